@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs what hrad needs from Debian bookworm's packages, and does nothing when all is there.
+# Usage: scripts/install_deps.sh [--with-notebooks]
+set -euo pipefail
+
+packages=(
+  # toolchain
+  g++ make cmake pkg-config
+  # geometry, meshes, linear algebra, fitting
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev libopenmesh-dev libeigen3-dev libceres-dev libtbb-dev
+  # command line, files, formats
+  libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libtinyobjloader-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev
+  # plots written by `hrad sweep` and `hrad figures`
+  python3 python3-matplotlib python3-numpy
+)
+if [[ "${1:-}" == "--with-notebooks" ]]; then
+  packages+=(python3-pandas jupyter-nbconvert python3-ipykernel)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+sudo=()
+if [[ $(id -u) -ne 0 ]]; then sudo=(sudo); fi
+echo "install_deps: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -qq
+"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2

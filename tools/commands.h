@@ -1,0 +1,10 @@
+// Each subcommand registers itself on the top-level CLI11 app; see its file for its help text.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace hrad::cli {
+
+void add_info_command(CLI::App& app);
+
+}  // namespace hrad::cli
