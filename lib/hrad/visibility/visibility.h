@@ -1,0 +1,64 @@
+// Visibility between points and polygons of a scene, decided with exact predicates.
+// The one visibility oracle every solver asks; CGAL stays inside the implementation.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "hrad/core/scene.h"
+#include "hrad/core/types.h"
+
+namespace hrad {
+
+/// How a pair of polygons sees each other, decided before any ray is cast.
+enum class PairClass { kFacingAway, kFullyVisible, kFullyHidden, kPartial };
+
+/// Fraction of the pair that is mutually visible, with an error estimate.
+struct VisibilityEstimate {
+  double fraction = 1.0;  ///< in [0, 1]
+  double error = 0.0;     ///< estimate of |fraction - true fraction| (0 when classified exactly)
+  PairClass pair_class = PairClass::kFullyVisible;
+};
+
+/// Counters for solver reports; updated atomically (relaxed), safe to share between threads.
+struct VisibilityCounters {
+  std::atomic<std::uint64_t> segment_queries{0};
+  std::atomic<std::uint64_t> pairs_facing_away{0};
+  std::atomic<std::uint64_t> pairs_visible{0};
+  std::atomic<std::uint64_t> pairs_hidden{0};
+  std::atomic<std::uint64_t> pairs_partial{0};
+};
+
+/// Visibility oracle over the patches of one scene. Elements are sub-polygons of patches: every
+/// query names the patch each polygon or point lies on, so that the endpoints' own patches never
+/// block (see the implementation file for the exact touching rules).
+class Visibility {
+ public:
+  virtual ~Visibility() = default;
+
+  /// True iff the open segment a-b meets a patch other than `patch_a` and `patch_b`.
+  virtual bool segment_blocked(const Vec3& a, int patch_a, const Vec3& b, int patch_b) const = 0;
+
+  /// Classifies a pair by shaft culling (Haines & Wallace 1994) with exact predicates.
+  virtual PairClass classify(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b) const = 0;
+
+  /// Classifies the pair and, only when partial, samples `samples` stratified point pairs
+  /// (deterministic in `seed`) to estimate the visible fraction.
+  virtual VisibilityEstimate estimate(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b,
+                                      int samples, std::uint64_t seed) const = 0;
+
+  /// True when some patch can block some pair of other patches (an empty convex room: false).
+  virtual bool scene_has_occlusion() const = 0;
+
+  VisibilityCounters& counters() const { return counters_; }
+
+ private:
+  mutable VisibilityCounters counters_;
+};
+
+/// The CGAL implementation: AABB tree of the scene's triangles, exact predicates.
+std::unique_ptr<Visibility> make_visibility(const Scene& scene);
+
+}  // namespace hrad
