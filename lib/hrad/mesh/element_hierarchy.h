@@ -1,0 +1,103 @@
+// The element hierarchy: one quadtree per patch, stored in one arena of nodes addressed by index.
+// Solvers refine it (uniformly for full matrix and substructuring, adaptively for hierarchical
+// radiosity) and keep their per-element unknowns in the nodes; to_solution() turns the leaves into
+// one conforming polygon mesh (built with OpenMesh in the .cpp; no OpenMesh type crosses this header).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "hrad/core/scene.h"
+#include "hrad/core/solution.h"
+#include "hrad/core/types.h"
+
+namespace hrad {
+
+/// Index of a node in ElementHierarchy's arena. Stable across split() (the arena only grows).
+using NodeId = std::int32_t;
+inline constexpr NodeId kNoNode = -1;
+
+/// One element: a convex planar triangle or quad lying on one patch.
+struct ElementNode {
+  std::array<Vec3, 4> vertices{};  ///< counter-clockwise seen from the patch's front; [3] unused for triangles
+  int vertex_count = 0;            ///< 3 or 4
+  double area = 0.0;
+  int patch = -1;                  ///< index into Scene::patches
+  NodeId parent = kNoNode;
+  NodeId first_child = kNoNode;    ///< the 4 children are first_child .. first_child + 3; kNoNode for a leaf
+  int depth = 0;                   ///< 0 for a patch's root
+
+  Rgb radiosity = Rgb::Zero();     ///< B: the unknown, per channel
+  Rgb emission = Rgb::Zero();      ///< E: the patch's emission (copied down at construction and split)
+  Rgb reflectance = Rgb::Zero();   ///< rho: the patch's reflectance
+  Rgb gathered = Rgb::Zero();      ///< sum over links of F(this -> source) * B(source), before reflection
+
+  bool is_leaf() const { return first_child == kNoNode; }
+  std::span<const Vec3> polygon() const { return {vertices.data(), static_cast<std::size_t>(vertex_count)}; }
+};
+
+/// Arena of quadtrees. Node i < scene.patches.size() is the root of patch i (root(patch) == patch);
+/// children are appended in blocks of 4. Not thread-safe for split(); reading nodes and writing
+/// their radiosity fields from several threads is fine as long as each thread owns its nodes.
+class ElementHierarchy {
+ public:
+  /// One root per patch of `scene`, with the patch's polygon, area, emission and reflectance.
+  /// Radiosity starts at the emission; gathered at 0.
+  explicit ElementHierarchy(const Scene& scene);
+
+  std::size_t size() const { return nodes_.size(); }
+  int patch_count() const { return patch_count_; }
+  NodeId root(int patch) const { return static_cast<NodeId>(patch); }
+  const ElementNode& node(NodeId id) const { return nodes_[static_cast<std::size_t>(id)]; }
+  ElementNode& node(NodeId id) { return nodes_[static_cast<std::size_t>(id)]; }
+  const std::vector<ElementNode>& nodes() const { return nodes_; }
+
+  /// Splits a leaf 1-to-4 and returns its first child; returns the existing first child if `id`
+  /// is already split. A quad is split at its edge midpoints and its vertex mean, a triangle at
+  /// its edge midpoints (the middle child is the triangle of the three midpoints). Children inherit
+  /// emission, reflectance and radiosity; their areas sum to the parent's (to rounding).
+  /// Child k of a quad keeps parent vertex k as its vertex k, so each child is counter-clockwise.
+  NodeId split(NodeId id);
+
+  /// The leaves of one patch's tree in depth-first order (children in index order).
+  std::vector<NodeId> leaves(int patch) const;
+  /// The leaves of all trees: patch by patch, each in leaves(patch) order. This is the face order
+  /// of to_solution().
+  std::vector<NodeId> all_leaves() const;
+  /// The leaves below (or equal to) `id`, depth-first.
+  std::vector<NodeId> leaves_below(NodeId id) const;
+
+  /// Splits every leaf whose area exceeds `max_area` until none does (max_area > 0).
+  void subdivide_uniform(double max_area);
+  /// The same for the tree below `id` only.
+  void subdivide_uniform(NodeId id, double max_area);
+
+  /// Sets each interior node's radiosity to the area average of its children, bottom-up
+  /// (the "pull" of push-pull; Hanrahan, Salzman & Aupperle 1991, sec. 4).
+  void pull_radiosity();
+
+  /// The leaves as one conforming polygon mesh (an OpenMesh PolyMesh inside):
+  ///  * faces are the leaves in all_leaves() order, with face_patch and face_radiosity;
+  ///  * T-vertices (a leaf vertex lying on the open edge of a larger neighbouring leaf, on the same
+  ///    patch or across patches that meet there) are inserted into that leaf's polygon, so every
+  ///    leaf vertex lying on another leaf's edge is a vertex of that leaf's polygon: no cracks;
+  ///  * vertices are shared by the faces that lie in one plane; where the plane changes (a crease,
+  ///    e.g. floor and wall) each side keeps its own copy of the vertex, so colours do not bleed
+  ///    around corners;
+  ///  * vertex_radiosity is the area-weighted mean of the leaves around the vertex (including the
+  ///    larger leaf a T-vertex was inserted into): Baum, Mann, Smith & Winget 1991, "Making radiosity
+  ///    usable: automatic preprocessing and meshing techniques for the generation of accurate
+  ///    radiosity solutions" (anchoring of T-vertices, sec. 4), so smooth display shows no cracks;
+  ///  * patch_radiosity is the area-weighted mean of each patch's leaves.
+  /// `weld_tolerance` (scene units; 0 = 1e-9 times the scene's bounding-box diagonal) decides when
+  /// two vertices are the same point and when a vertex lies on an edge.
+  Solution to_solution(double weld_tolerance = 0.0) const;
+
+ private:
+  std::vector<ElementNode> nodes_;
+  int patch_count_ = 0;
+};
+
+}  // namespace hrad

@@ -1,0 +1,63 @@
+// The one place where a form-factor kernel and a visibility rule are chosen. Every solver (full
+// matrix, substructuring, hierarchical) asks this class for the factor between two elements.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <span>
+
+#include "hrad/core/scene.h"
+#include "hrad/core/types.h"
+#include "hrad/solvers/effects.h"
+
+namespace hrad {
+
+class Visibility;
+
+struct FormFactorEstimate {
+  double value = 0.0;       ///< F(receiver -> source) = unoccluded analytic factor * visibility fraction
+  double reverse = 0.0;     ///< F(source -> receiver) with the same visibility fraction (reciprocal to rounding)
+  double unoccluded = 0.0;  ///< F(receiver -> source) without occlusion (an upper bound of value)
+  double visibility = 1.0;  ///< visible fraction in [0, 1] (1 when visibility is off)
+  /// Estimate of |value - true F(receiver -> source)|: unoccluded * visibility error (0 when the
+  /// pair was classified exactly or visibility is off; the analytic kernel is exact to rounding).
+  double error = 0.0;
+  bool facing_away = false;  ///< culled without calling the kernel (value 0)
+};
+
+/// Thread-safe: estimate() may be called from many threads; counters are atomic, and each call
+/// is deterministic (the visibility sampling seed is derived from the pair's geometry).
+class FormFactorEvaluator {
+ public:
+  /// `visibility` may be null only when `effects.visibility` is false. `visibility_samples` is the
+  /// number of point pairs sampled for a partially visible pair (> 0).
+  FormFactorEvaluator(const Scene& scene, const Effects& effects, const Visibility* visibility,
+                      int visibility_samples);
+
+  /// Factor from `receiver` (a polygon lying on patch `receiver_patch`) to `source` (on
+  /// `source_patch`). Polygons are counter-clockwise seen from their patches' fronts. Pairs on
+  /// one patch are coplanar and give 0 without a kernel call; pairs facing away are culled when
+  /// effects.cull_facing_away; the visibility oracle is asked only when effects.visibility.
+  FormFactorEstimate estimate(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
+                              int source_patch) const;
+
+  /// Kernel calls (polygon_to_polygon) so far; one call gives both directions.
+  std::uint64_t evaluations() const { return evaluations_.load(std::memory_order_relaxed); }
+  /// Visibility oracle calls (pair classifications and estimates) so far.
+  std::uint64_t visibility_queries() const { return visibility_queries_.load(std::memory_order_relaxed); }
+  /// Pairs culled as facing away so far.
+  std::uint64_t culled_pairs() const { return culled_.load(std::memory_order_relaxed); }
+
+  const Effects& effects() const { return effects_; }
+
+ private:
+  const Scene& scene_;
+  Effects effects_;
+  const Visibility* visibility_;
+  int visibility_samples_;
+  mutable std::atomic<std::uint64_t> evaluations_{0};
+  mutable std::atomic<std::uint64_t> visibility_queries_{0};
+  mutable std::atomic<std::uint64_t> culled_{0};
+};
+
+}  // namespace hrad

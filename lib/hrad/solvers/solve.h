@@ -1,0 +1,111 @@
+// The solvers' shared entry point: options, summary and solve(). Failures to converge are a
+// Termination in the summary, not an exception; invalid options are an hrad::Error before any work.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hrad/core/scene.h"
+#include "hrad/core/solution.h"
+#include "hrad/solvers/effects.h"
+
+namespace hrad {
+
+enum class Method {
+  kFull,          ///< classical radiosity: n elements, the n x n form-factor matrix, Eigen
+  kSubstructure,  ///< Cohen et al. 1986: patches shoot, elements receive (n x N factors)
+  kHierarchical,  ///< Hanrahan, Salzman & Aupperle 1991: quadtrees, links, push-pull
+};
+
+/// How the full-matrix system (I - rho F) B = E is solved.
+enum class LinearSolver {
+  kLu,           ///< Eigen's partial-pivoting LU: the direct reference
+  kJacobi,       ///< B <- E + rho F B, all elements from the previous iterate
+  kGaussSeidel,  ///< the same, each element using the newest values
+};
+
+struct SolveOptions {
+  Method method = Method::kHierarchical;
+  /// Full matrix and substructuring: largest element area (scene units squared); 0 = automatic
+  /// from the scene (about kAutoElements elements over the whole scene).
+  double max_area = 0.0;
+  /// Substructuring: largest shooting-patch area; 0 = the input polygons are the patches.
+  double patch_area = 0.0;
+  /// Hierarchical: form-factor refinement tolerance (HSA 1991 Fε); 0 = unused.
+  double feps = 0.0;
+  /// Hierarchical: B*F refinement tolerance (HSA 1991 BFε, radiosity units); 0 = unused.
+  double bfeps = 0.0;
+  /// Hierarchical: smallest element area (HSA 1991 Aε, scene units squared); 0 = automatic.
+  double aeps = 0.0;
+  /// Iterations stop when the largest change of any element's radiosity (any channel), divided
+  /// by the largest radiosity, falls below this.
+  double tolerance = 1e-6;
+  /// Iterative methods give up (Termination::kMaxIterations) after this many iterations.
+  int max_iterations = 10000;
+  LinearSolver linear_solver = LinearSolver::kLu;
+  EffectsMode effects = EffectsMode::kAuto;
+  /// Point pairs sampled per partially visible pair (the visibility oracle's `samples`).
+  int visibility_samples = 16;
+  /// Worker threads for the parallel phases; 0 = TBB's default (all cores).
+  int threads = 0;
+  /// Called with one line of progress for long phases (the CLI prints it on stderr); may be empty.
+  std::function<void(std::string_view)> progress;
+};
+
+/// Element count aimed at when max_area is automatic (full matrix and substructuring).
+inline constexpr double kAutoElements = 1000.0;
+
+enum class Termination {
+  kConverged,      ///< an iterative method met the tolerance
+  kMaxIterations,  ///< an iterative method ran out of iterations (the answer is the last iterate)
+  kDirect,         ///< a direct solve (LU, or B = E when nothing reflects)
+  kFailed,         ///< a numerical failure (non-finite values, singular system); see message
+};
+
+struct SolveSummary {
+  Method method = Method::kHierarchical;
+  Termination termination = Termination::kFailed;
+  std::string message;              ///< one line for people: how it ended and why
+  int iterations = 0;
+  std::size_t patches = 0;          ///< input patches (Scene::patches)
+  std::size_t elements = 0;         ///< leaves of the element hierarchy
+  std::size_t links = 0;            ///< interactions: n^2 (full), n*N (substructuring), links (hierarchical)
+  std::uint64_t form_factor_evaluations = 0;
+  std::uint64_t visibility_queries = 0;
+  /// Wall-clock seconds per phase ("setup", "effects", "mesh", "form_factors", "solve",
+  /// "refine", "output", ...) in the order they ran, and the whole solve.
+  std::vector<std::pair<std::string, double>> seconds;
+  double total_seconds = 0.0;
+  Effects effects;                  ///< what was simulated and why
+  /// Largest relative change per iteration (see SolveOptions::tolerance), for convergence plots.
+  std::vector<double> change_per_iteration;
+  std::size_t peak_memory_bytes = 0;  ///< the process's peak resident set (0 if unknown)
+  /// Method-specific figures for the report (e.g. "max_area", "patch_area", "shooting_patches").
+  std::map<std::string, double> figures;
+};
+
+/// Checks every option before any work; throws hrad::Error naming the option as the command line
+/// spells it ("--feps must be >= 0, got -1"). NaN and infinities are rejected everywhere.
+void validate_options(const SolveOptions& options);
+
+/// Solves `scene` with options.method and writes the leaf mesh to `out` (if not null).
+/// Validates the options first.
+SolveSummary solve(const Scene& scene, const SolveOptions& options, Solution* out);
+
+std::string_view to_string(Method method);
+std::string_view to_string(Termination termination);
+std::string_view to_string(LinearSolver solver);
+std::string_view to_string(EffectsMode mode);
+/// Parses "full" | "substructure" | "hierarchical"; throws hrad::Error naming --method otherwise.
+Method parse_method(std::string_view text);
+/// Parses "lu" | "jacobi" | "gauss_seidel" (or "gauss-seidel"); throws hrad::Error naming --linear-solver.
+LinearSolver parse_linear_solver(std::string_view text);
+/// Parses "auto" | "all"; throws hrad::Error naming --effects.
+EffectsMode parse_effects_mode(std::string_view text);
+
+}  // namespace hrad

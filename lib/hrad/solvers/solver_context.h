@@ -1,0 +1,132 @@
+// What every solver does around its own algorithm, written once: validate, build the visibility
+// oracle, analyse the effects, make the form-factor evaluator, time phases, report progress,
+// record iterations, and finally turn the element hierarchy into the Solution and the summary.
+//
+// A solver's shape (see full_matrix.cpp, substructuring.cpp):
+//
+//   SolveSummary solve_xxx(const Scene& scene, const SolveOptions& options, Solution* out) {
+//     SolverContext ctx(scene, options, Method::kXxx);   // validates, effects, evaluator
+//     ElementHierarchy h(scene);
+//     { auto phase = ctx.phase("mesh"); h.subdivide_uniform(ctx.max_area()); }
+//     ... ctx.evaluator().estimate(...) ...
+//     while (...) { ...; if (ctx.record_iteration(change)) break; }
+//     return ctx.finish(h, links, out);
+//   }
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string>
+
+#include "hrad/core/scene.h"
+#include "hrad/core/solution.h"
+#include "hrad/core/stopwatch.h"
+#include "hrad/mesh/element_hierarchy.h"
+#include "hrad/solvers/effects.h"
+#include "hrad/solvers/form_factor_evaluator.h"
+#include "hrad/solvers/solve.h"
+
+namespace hrad {
+
+class Visibility;
+
+/// Largest element area for `scene` when SolveOptions::max_area is 0: total area / kAutoElements.
+double automatic_max_area(const Scene& scene);
+
+class SolverContext {
+ public:
+  /// Validates `options` (hrad::Error before any work), limits TBB to options.threads, builds the
+  /// visibility oracle when the effects may need it, analyses the effects (phase "effects") and
+  /// makes the evaluator. Keeps references to `scene` and `options`: both must outlive it.
+  SolverContext(const Scene& scene, const SolveOptions& options, Method method);
+  ~SolverContext();
+  SolverContext(const SolverContext&) = delete;
+  SolverContext& operator=(const SolverContext&) = delete;
+
+  const Scene& scene() const { return scene_; }
+  const SolveOptions& options() const { return options_; }
+  const Effects& effects() const { return summary_.effects; }
+  const FormFactorEvaluator& evaluator() const { return *evaluator_; }
+  /// The oracle (null when effects().visibility is false and it was not needed for the analysis).
+  const Visibility* visibility() const { return visibility_.get(); }
+  /// options.max_area, or automatic_max_area(scene) when it is 0.
+  double max_area() const;
+  /// Channels to compute: 1 (then copy channel 0 to 1 and 2 with copy_gray()) or 3.
+  int channels() const { return summary_.effects.color_channels; }
+
+  /// Times a phase from construction to destruction into summary.seconds (added to an existing
+  /// entry of the same name).
+  class Phase {
+   public:
+    Phase(SolverContext& ctx, std::string name) : ctx_(ctx), name_(std::move(name)) {}
+    ~Phase() { ctx_.add_seconds(name_, watch_.seconds()); }
+    Phase(const Phase&) = delete;
+    Phase& operator=(const Phase&) = delete;
+
+   private:
+    SolverContext& ctx_;
+    std::string name_;
+    Stopwatch watch_;
+  };
+  Phase phase(std::string name) { return Phase(*this, std::move(name)); }
+  void add_seconds(const std::string& name, double seconds);
+
+  /// Sends one line to options.progress (if set).
+  void progress(std::string_view line) const;
+
+  /// Appends `change` (largest relative change of this iteration) to the summary and returns true
+  /// when iterating should stop: converged (change < tolerance; termination kConverged), out of
+  /// iterations (kMaxIterations), or non-finite (kFailed). Sets message accordingly.
+  bool record_iteration(double change);
+  /// For direct solves: termination kDirect with `message`.
+  void set_direct(std::string message);
+  /// For numerical failures: termination kFailed with `message`.
+  void set_failed(std::string message);
+
+  SolveSummary& summary() { return summary_; }
+
+  /// Finishes: counters from the evaluator, elements from `hierarchy`, links as given, phase
+  /// "output" for hierarchy.to_solution() into `out` (if not null), peak memory, total seconds.
+  SolveSummary finish(const ElementHierarchy& hierarchy, std::size_t links, Solution* out);
+
+ private:
+  const Scene& scene_;
+  const SolveOptions& options_;
+  Stopwatch total_;
+  SolveSummary summary_;
+  std::unique_ptr<Visibility> visibility_;
+  std::unique_ptr<FormFactorEvaluator> evaluator_;
+  struct ThreadLimit;
+  std::unique_ptr<ThreadLimit> thread_limit_;
+};
+
+/// Largest |a - b| over the given channels divided by the largest |b| (0 when b is all 0).
+double relative_change(std::span<const Rgb> before, std::span<const Rgb> after, int channels);
+
+/// Copies channel 0 into channels 1 and 2 (for gray scenes solved with one channel).
+inline void copy_gray(Rgb& value) { value[1] = value[2] = value[0]; }
+
+/// The peak resident set of this process in bytes (Linux VmHWM), 0 if unknown.
+std::size_t peak_memory_bytes();
+
+// --- Gather and push-pull, shared by iterative solvers on the hierarchy ---------------------
+
+/// An interaction: `receiver` gathers radiosity from `source` with factor F(receiver -> source).
+struct Link {
+  NodeId receiver = kNoNode;
+  NodeId source = kNoNode;
+  double form_factor = 0.0;
+};
+
+/// Sets `gathered` of every node to 0, then adds F * B(source) for each link to its receiver's
+/// `gathered` (all channels; Hanrahan, Salzman & Aupperle 1991, "GatherRad"). Deterministic:
+/// links are summed in their order.
+void gather(ElementHierarchy& hierarchy, std::span<const Link> links);
+
+/// Push-pull over every tree (HSA 1991, "PushPullRad"): gathered radiosity is pushed down to the
+/// leaves (adding parents' `gathered` to their children's), each leaf gets B = E + rho * (total
+/// gathered), and interior nodes get the area average of their children. Returns the largest
+/// relative change of the leaves' radiosity (over `channels`, as in SolveOptions::tolerance).
+double push_pull(ElementHierarchy& hierarchy, int channels);
+
+}  // namespace hrad
