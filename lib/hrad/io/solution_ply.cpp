@@ -1,0 +1,164 @@
+#include "hrad/io/solution_ply.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <fmt/format.h>
+
+#include "hrad/core/error.h"
+#include "hrad/io/atomic_file.h"
+#include "hrad/render/face_geometry.h"
+#include "hrad/render/tone_map.h"
+
+namespace hrad {
+namespace {
+
+struct PlyTraits : OpenMesh::DefaultTraitsDouble {
+  typedef OpenMesh::Vec3uc Color;
+};
+using PlyMesh = OpenMesh::PolyMesh_ArrayKernelT<PlyTraits>;
+
+constexpr const char* kChannel[3] = {"radiosity_r", "radiosity_g", "radiosity_b"};
+constexpr const char* kPatch = "patch";
+
+void check_consistent(const std::string& path, const Solution& s) {
+  auto fail = [&](const std::string& what) { throw Error(fmt::format("{}: cannot write solution: {}", path, what)); };
+  if (s.vertex_radiosity.size() != s.vertices.size())
+    fail(fmt::format("{} vertex radiosities for {} vertices", s.vertex_radiosity.size(), s.vertices.size()));
+  if (s.face_radiosity.size() != s.faces.size() || s.face_patch.size() != s.faces.size())
+    fail(fmt::format("{} faces but {} face radiosities and {} patch ids", s.faces.size(), s.face_radiosity.size(),
+                     s.face_patch.size()));
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (s.faces[f].size() < 3) fail(fmt::format("face {} has {} vertices", f, s.faces[f].size()));
+    for (int v : s.faces[f])
+      if (v < 0 || static_cast<std::size_t>(v) >= s.vertices.size())
+        fail(fmt::format("face {} has vertex index {} out of range", f, v));
+    if (s.face_patch[f] < 0) fail(fmt::format("face {} has patch id {}", f, s.face_patch[f]));
+  }
+}
+
+/// add_face without OpenMesh's "complex edge" message: the caller handles the failure.
+OpenMesh::FaceHandle add_face_quietly(PlyMesh& mesh, const std::vector<OpenMesh::VertexHandle>& vertices) {
+  const bool was_enabled = omerr().is_enabled();
+  omerr().disable();
+  const OpenMesh::FaceHandle fh = mesh.add_face(vertices);
+  if (was_enabled) omerr().enable();
+  return fh;
+}
+
+}  // namespace
+
+void write_solution_ply(const std::string& path, const Solution& solution, double exposure) {
+  check_consistent(path, solution);
+  PlyMesh mesh;
+  mesh.request_vertex_colors();
+  OpenMesh::VPropHandleT<double> vrad[3];
+  OpenMesh::FPropHandleT<double> frad[3];
+  OpenMesh::FPropHandleT<int> fpatch;
+  for (int c = 0; c < 3; ++c) {
+    mesh.add_property(vrad[c], kChannel[c]);
+    mesh.property(vrad[c]).set_persistent(true);
+    mesh.add_property(frad[c], kChannel[c]);
+    mesh.property(frad[c]).set_persistent(true);
+  }
+  mesh.add_property(fpatch, kPatch);
+  mesh.property(fpatch).set_persistent(true);
+
+  auto add_vertex = [&](int i) {
+    const Vec3& p = solution.vertices[i];
+    const OpenMesh::VertexHandle vh = mesh.add_vertex(PlyMesh::Point(p.x(), p.y(), p.z()));
+    const Rgb8 rgb = tone_map(solution.vertex_radiosity[i], exposure);
+    mesh.set_color(vh, PlyMesh::Color(rgb[0], rgb[1], rgb[2]));
+    for (int c = 0; c < 3; ++c) mesh.property(vrad[c], vh) = solution.vertex_radiosity[i][c];
+    return vh;
+  };
+  std::vector<OpenMesh::VertexHandle> handles;
+  handles.reserve(solution.vertices.size());
+  for (std::size_t i = 0; i < solution.vertices.size(); ++i) handles.push_back(add_vertex(static_cast<int>(i)));
+
+  std::vector<OpenMesh::VertexHandle> face_handles;
+  for (std::size_t f = 0; f < solution.faces.size(); ++f) {
+    face_handles.clear();
+    for (int v : solution.faces[f]) face_handles.push_back(handles[v]);
+    OpenMesh::FaceHandle fh = add_face_quietly(mesh, face_handles);
+    if (!fh.is_valid()) {  // non-manifold here: give the face its own vertices (see header)
+      face_handles.clear();
+      for (int v : solution.faces[f]) face_handles.push_back(add_vertex(v));
+      fh = mesh.add_face(face_handles);
+      if (!fh.is_valid()) throw Error(fmt::format("{}: cannot write solution: face {} is degenerate", path, f));
+    }
+    for (int c = 0; c < 3; ++c) mesh.property(frad[c], fh) = solution.face_radiosity[f][c];
+    mesh.property(fpatch, fh) = solution.face_patch[f];
+  }
+
+  const OpenMesh::IO::Options options =
+      OpenMesh::IO::Options::Binary | OpenMesh::IO::Options::VertexColor | OpenMesh::IO::Options::Custom;
+  write_file_atomically(
+      path,
+      [&](std::ostream& out) {
+        if (!OpenMesh::IO::write_mesh(mesh, out, ".ply", options, 17))
+          throw Error(fmt::format("{}: PLY writer failed", path));
+      },
+      /*binary=*/true);
+}
+
+Solution read_solution_ply(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path)) throw Error(fmt::format("{}: cannot open solution PLY", path));
+  PlyMesh mesh;
+  OpenMesh::IO::Options options = OpenMesh::IO::Options::Custom;
+  if (!OpenMesh::IO::read_mesh(mesh, in, ".ply", options))
+    throw Error(fmt::format("{}: not a readable PLY file", path));
+
+  OpenMesh::VPropHandleT<double> vrad[3];
+  OpenMesh::FPropHandleT<double> frad[3];
+  OpenMesh::FPropHandleT<int> fpatch;
+  for (int c = 0; c < 3; ++c) {
+    if (!mesh.get_property_handle(vrad[c], kChannel[c]))
+      throw Error(fmt::format("{}: not an hrad solution: no double vertex property '{}'", path, kChannel[c]));
+    if (!mesh.get_property_handle(frad[c], kChannel[c]))
+      throw Error(fmt::format("{}: not an hrad solution: no double face property '{}'", path, kChannel[c]));
+  }
+  if (!mesh.get_property_handle(fpatch, kPatch))
+    throw Error(fmt::format("{}: not an hrad solution: no int face property '{}'", path, kPatch));
+
+  Solution s;
+  s.vertices.reserve(mesh.n_vertices());
+  for (const auto vh : mesh.vertices()) {
+    const PlyMesh::Point& p = mesh.point(vh);
+    s.vertices.emplace_back(p[0], p[1], p[2]);
+    s.vertex_radiosity.emplace_back(mesh.property(vrad[0], vh), mesh.property(vrad[1], vh), mesh.property(vrad[2], vh));
+    if (!s.vertices.back().allFinite() || !s.vertex_radiosity.back().allFinite())
+      throw Error(fmt::format("{}: vertex {} has a non-finite position or radiosity", path, vh.idx()));
+  }
+  int patches = 0;
+  for (const auto fh : mesh.faces()) {
+    std::vector<int> face;
+    for (const auto vh : mesh.fv_range(fh)) face.push_back(vh.idx());
+    s.faces.push_back(std::move(face));
+    s.face_radiosity.emplace_back(mesh.property(frad[0], fh), mesh.property(frad[1], fh), mesh.property(frad[2], fh));
+    const int p = mesh.property(fpatch, fh);
+    if (p < 0) throw Error(fmt::format("{}: face {} has a negative patch id {}", path, fh.idx(), p));
+    if (!s.face_radiosity.back().allFinite())
+      throw Error(fmt::format("{}: face {} has a non-finite radiosity", path, fh.idx()));
+    s.face_patch.push_back(p);
+    patches = std::max(patches, p + 1);
+  }
+
+  // patch_radiosity: area-weighted mean of each patch's faces (Solution's definition).
+  std::vector<Rgb> sum(patches, Rgb::Zero());
+  std::vector<double> area(patches, 0.0);
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    const double a = face_area(s, f);
+    sum[s.face_patch[f]] += a * s.face_radiosity[f];
+    area[s.face_patch[f]] += a;
+  }
+  s.patch_radiosity.resize(patches, Rgb::Zero());
+  for (int p = 0; p < patches; ++p)
+    if (area[p] > 0.0) s.patch_radiosity[p] = sum[p] / area[p];
+  return s;
+}
+
+}  // namespace hrad

@@ -1,0 +1,131 @@
+#include "hrad/io/solution_ply.h"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <gtest/gtest.h>
+
+#include "hrad/core/error.h"
+#include "hrad/render/tone_map.h"
+#include "../support/temp_dir.h"
+
+namespace hrad {
+namespace {
+
+// Two unit quads sharing an edge (patch 0, split into two elements) and a triangle (patch 3).
+Solution small_solution() {
+  Solution s;
+  s.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(2, 1, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                Vec3(0, 0, 5), Vec3(3, 0, 5), Vec3(0, 2, 5)};
+  for (int i = 0; i < 9; ++i) s.vertex_radiosity.push_back(Rgb(0.1 * i + 1.0 / 3.0, 1e-9 * i, 12345.678901234 + i));
+  s.faces = {{0, 1, 4, 5}, {1, 2, 3, 4}, {6, 7, 8}};
+  s.face_patch = {0, 0, 3};
+  s.face_radiosity = {Rgb(0.25, 0.5, 1.0 / 7.0), Rgb(0.75, 0.0, 2.0), Rgb(100.0, 200.0, 300.0)};
+  s.patch_radiosity = {Rgb(0.5, 0.25, (1.0 / 7.0 + 2.0) / 2), Rgb::Zero(), Rgb::Zero(), Rgb(100.0, 200.0, 300.0)};
+  return s;
+}
+
+TEST(SolutionPly, RoundTripKeepsTopologyAndExactRadiosity) {
+  test::TempDir dir;
+  const Solution s = small_solution();
+  const std::string path = dir.path("sol.ply");
+  write_solution_ply(path, s, 1.0);
+  EXPECT_EQ(dir.entries(), 1u);  // no temporary file left behind
+  const Solution r = read_solution_ply(path);
+  ASSERT_EQ(r.vertices.size(), s.vertices.size());
+  for (std::size_t i = 0; i < s.vertices.size(); ++i) {
+    EXPECT_NEAR((r.vertices[i] - s.vertices[i]).norm(), 0.0, 1e-6);  // float positions
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(r.vertex_radiosity[i][c], s.vertex_radiosity[i][c]);
+  }
+  EXPECT_EQ(r.faces, s.faces);
+  EXPECT_EQ(r.face_patch, s.face_patch);
+  for (std::size_t f = 0; f < s.faces.size(); ++f)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(r.face_radiosity[f][c], s.face_radiosity[f][c]);
+  // Patch 0: two elements of area 1 each -> plain mean; patches 1, 2 have no face -> zero.
+  ASSERT_EQ(r.patch_radiosity.size(), 4u);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(r.patch_radiosity[0][c], s.patch_radiosity[0][c], 1e-12);
+    EXPECT_EQ(r.patch_radiosity[1][c], 0.0);
+    EXPECT_NEAR(r.patch_radiosity[3][c], s.patch_radiosity[3][c], 1e-12);
+  }
+}
+
+TEST(SolutionPly, VertexColoursAreToneMappedRadiosity) {
+  test::TempDir dir;
+  Solution s = small_solution();
+  s.vertex_radiosity[0] = Rgb(0.5, 0.0, 2.0);
+  const std::string path = dir.path("sol.ply");
+  write_solution_ply(path, s, 1.0);
+  struct Traits : OpenMesh::DefaultTraits {};
+  OpenMesh::PolyMesh_ArrayKernelT<Traits> mesh;
+  mesh.request_vertex_colors();
+  OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexColor;
+  ASSERT_TRUE(OpenMesh::IO::read_mesh(mesh, path, opt));
+  ASSERT_TRUE(opt.check(OpenMesh::IO::Options::VertexColor));
+  const auto c = mesh.color(mesh.vertex_handle(0));
+  // sRGB(0.5) = 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354 -> 188; 0 -> 0; 2 clamps to 1 -> 255.
+  EXPECT_EQ(int(c[0]), 188);
+  EXPECT_EQ(int(c[1]), 0);
+  EXPECT_EQ(int(c[2]), 255);
+}
+
+TEST(SolutionPly, NonManifoldFaceGetsItsOwnVertices) {
+  // Three triangles on one edge (0,1): OpenMesh's half-edge mesh cannot hold the third.
+  Solution s;
+  s.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 1, 0), Vec3(0.5, -1, 0), Vec3(0.5, 0, 1)};
+  s.vertex_radiosity.assign(5, Rgb(1, 2, 3));
+  s.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  s.face_patch = {0, 1, 2};
+  s.face_radiosity = {Rgb(1, 1, 1), Rgb(2, 2, 2), Rgb(3, 3, 3)};
+  test::TempDir dir;
+  write_solution_ply(dir.path("nm.ply"), s, 1.0);
+  const Solution r = read_solution_ply(dir.path("nm.ply"));
+  ASSERT_EQ(r.faces.size(), 3u);
+  EXPECT_GT(r.vertices.size(), s.vertices.size());
+  for (std::size_t f = 0; f < 3; ++f) {
+    ASSERT_EQ(r.faces[f].size(), 3u);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR((r.vertices[r.faces[f][k]] - s.vertices[s.faces[f][k]]).norm(), 0, 1e-7);
+    EXPECT_EQ(r.face_radiosity[f][0], s.face_radiosity[f][0]);
+    EXPECT_EQ(r.face_patch[f], s.face_patch[f]);
+  }
+}
+
+void expect_error_naming(const std::string& path, const std::string& fragment) {
+  try {
+    read_solution_ply(path);
+    FAIL() << "no error for " << path;
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+  }
+}
+
+TEST(SolutionPly, BadFilesAreErrorsNamingTheFile) {
+  test::TempDir dir;
+  expect_error_naming(dir.path("missing.ply"), "cannot open");
+  expect_error_naming(dir.write("garbage.ply", "this is not a ply file\n\x01\x02\x03"), "not a readable PLY");
+  expect_error_naming(dir.write("plain.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                      "radiosity_r");
+  expect_error_naming(dir.write("nopatch.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                "property float z\nproperty double radiosity_r\nproperty double radiosity_g\n"
+                                "property double radiosity_b\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                "property double radiosity_r\nproperty double radiosity_g\n"
+                                "property double radiosity_b\nend_header\n0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n"
+                                "3 0 1 2 1 1 1\n"),
+                      "patch");
+}
+
+TEST(SolutionPly, InconsistentSolutionIsAnErrorAndLeavesNoFile) {
+  Solution s = small_solution();
+  s.faces[1][2] = 42;
+  test::TempDir dir;
+  EXPECT_THROW(write_solution_ply(dir.path("bad.ply"), s, 1.0), Error);
+  EXPECT_EQ(dir.entries(), 0u);
+}
+
+}  // namespace
+}  // namespace hrad
