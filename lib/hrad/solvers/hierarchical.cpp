@@ -1,0 +1,123 @@
+#include "hrad/solvers/hierarchical.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "hrad/solvers/hierarchical_refine.h"
+#include "hrad/solvers/solver_context.h"
+
+namespace hrad {
+namespace {
+
+double largest_emission(const Scene& scene) {
+  double e = 0.0;
+  for (const Material& m : scene.materials) e = std::max(e, m.emission.maxCoeff());
+  return e;
+}
+
+/// Both directions of every stored interaction, in link order (gather sums in this order).
+std::vector<Link> directed_links(const std::vector<detail::LinkPair>& pairs) {
+  std::vector<Link> links;
+  links.reserve(2 * pairs.size());
+  for (const detail::LinkPair& pair : pairs) {
+    if (pair.estimate.value > 0.0) links.push_back({pair.p, pair.q, pair.estimate.value});
+    if (pair.estimate.reverse > 0.0) links.push_back({pair.q, pair.p, pair.estimate.reverse});
+  }
+  return links;
+}
+
+/// Jacobi iterations of gather and push-pull (HSA 1991 sec. 4, "SolveSystem"). Returns false when
+/// the iteration stopped without converging.
+bool solve_links(SolverContext& ctx, ElementHierarchy& h, const std::vector<Link>& links) {
+  auto phase = ctx.phase("solve");
+  h.pull_radiosity();  // interior nodes hold the area average their links are gathered from
+  while (true) {
+    gather(h, links);
+    const double change = push_pull(h, ctx.channels());
+    if (ctx.record_iteration(change)) break;
+  }
+  return ctx.summary().termination == Termination::kConverged;
+}
+
+}  // namespace
+
+HierarchicalTolerances hierarchical_tolerances(const Scene& scene, const SolveOptions& options) {
+  HierarchicalTolerances t;
+  t.feps = options.feps;
+  t.bfeps = options.bfeps;
+  if (t.feps == 0.0 && t.bfeps == 0.0) t.feps = kAutoFeps;
+  t.aeps = options.aeps > 0.0 ? options.aeps : kAutoAepsFraction * scene.total_area();
+  (void)largest_emission;
+  return t;
+}
+
+SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& options, Solution* out) {
+  SolverContext ctx(scene, options, Method::kHierarchical);
+  ElementHierarchy h(scene);
+  const HierarchicalTolerances t = hierarchical_tolerances(scene, options);
+  auto& figures = ctx.summary().figures;
+  figures["feps"] = t.feps;
+  figures["bfeps"] = t.bfeps;
+  figures["aeps"] = t.aeps;
+
+  if (!ctx.effects().bounces) {
+    ctx.set_direct("nothing reflects: B = E, no links needed");
+    figures["refine_passes"] = 0;
+    figures["link_pairs"] = 0;
+    return ctx.finish(h, 0, out);
+  }
+
+  const detail::RefineTolerances tol{t.feps, t.bfeps, t.aeps};
+  const int channels = ctx.channels();
+  // Initial candidates: every pair of input patches (HSA: "for all patches p, q"); each pair is
+  // refined once and its links are gathered both ways.
+  std::vector<detail::RefineCandidate> work;
+  const int n = static_cast<int>(scene.patches.size());
+  work.reserve(static_cast<std::size_t>(n) * static_cast<std::size_t>(n - 1) / 2);
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) work.push_back({h.root(i), h.root(j), false, {}});
+
+  std::vector<detail::LinkPair> pairs;
+  std::vector<Link> links;
+  int passes = 0;
+  while (true) {
+    detail::RefineResult refined;
+    {
+      auto phase = ctx.phase("refine");
+      refined = detail::refine_pairs(h, ctx.evaluator(), std::move(work), tol, channels);
+    }
+    ++passes;
+    const bool changed = refined.splits > 0;
+    pairs = std::move(refined.links);
+    links = directed_links(pairs);
+    ctx.progress("hierarchical: pass " + std::to_string(passes) + ": " + std::to_string(h.size()) + " nodes, " +
+                 std::to_string(links.size()) + " links");
+    // A re-refinement that changed nothing leaves the last solution consistent with its links.
+    if (passes > 1 && !changed) break;
+    if (!solve_links(ctx, h, links)) break;
+    // BF refinement: the tolerance depends on B, so refine again with the new radiosity (HSA sec. 4.2).
+    if (t.bfeps <= 0.0 || passes >= kMaxRefinePasses) break;
+    work = pairs;
+  }
+
+  double min_area = 0.0;
+  int max_depth = 0;
+  bool first = true;
+  for (const NodeId leaf : h.all_leaves()) {
+    const ElementNode& node = h.node(leaf);
+    min_area = first ? node.area : std::min(min_area, node.area);
+    max_depth = std::max(max_depth, node.depth);
+    first = false;
+  }
+  if (channels == 1) {
+    for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity);
+  }
+  figures["refine_passes"] = passes;
+  figures["link_pairs"] = static_cast<double>(pairs.size());
+  figures["min_element_area"] = min_area;
+  figures["max_depth"] = max_depth;
+  return ctx.finish(h, links.size(), out);
+}
+
+}  // namespace hrad
