@@ -29,6 +29,14 @@ struct VisibilityCounters {
   std::atomic<std::uint64_t> pairs_visible{0};
   std::atomic<std::uint64_t> pairs_hidden{0};
   std::atomic<std::uint64_t> pairs_partial{0};
+  std::atomic<std::uint64_t> pair_queries{0};   ///< classify() calls, including those inside estimate()
+  std::atomic<std::uint64_t> point_queries{0};  ///< estimate_from_point() calls
+
+  void reset() {
+    for (auto* c : {&segment_queries, &pairs_facing_away, &pairs_visible, &pairs_hidden, &pairs_partial,
+                    &pair_queries, &point_queries})
+      c->store(0, std::memory_order_relaxed);
+  }
 };
 
 /// Visibility oracle over the patches of one scene. Elements are sub-polygons of patches: every
@@ -51,6 +59,13 @@ class Visibility {
 
   /// True when some patch can block some pair of other patches (an empty convex room: false).
   virtual bool scene_has_occlusion() const = 0;
+
+  /// Fraction of the polygon `b` (on patch `patch_b`) visible from the point `x` (on patch
+  /// `patch_x`, or -1 for a point on no patch), by area: 0 when `b` faces away from x, otherwise
+  /// `samples` stratified points of `b` (deterministic in `seed`) unless the pair is classified
+  /// exactly first. The default samples with segment_blocked().
+  virtual VisibilityEstimate estimate_from_point(const Vec3& x, int patch_x, std::span<const Vec3> b, int patch_b,
+                                                 int samples, std::uint64_t seed) const;
 
   VisibilityCounters& counters() const { return counters_; }
 

@@ -1,0 +1,446 @@
+// The CGAL visibility oracle: an AABB tree over the scene's triangles, queried with exact
+// predicates (Exact_predicates_inexact_constructions_kernel: every predicate below is decided
+// exactly on the input doubles; no construction is ever made, so no epsilon is needed).
+//
+// Touching rules (what "the open segment a-b meets a patch" means):
+//   * Occluders are CLOSED: a patch is the union of its fan triangles including their edges and
+//     vertices. A segment through a shared edge or vertex of two triangles of an occluding mesh
+//     is blocked, so no light passes between the triangles of a closed surface, whatever its
+//     tessellation (T-junctions included: the union of closed triangles has no cracks).
+//   * The segment is OPEN: its endpoints a and b do not count. A patch that only touches a or b
+//     (a neighbouring wall sharing the edge a lies on, the ceiling a coplanar light lies in)
+//     does not block. The endpoints' own patches `patch_a` and `patch_b` never block.
+//   * Grazing: a segment lying in an occluder's plane is blocked iff it overlaps the closed
+//     triangle in more than an endpoint (it runs along the surface or crosses it).
+// Pair classification (shaft culling, Haines & Wallace 1994): the shaft of two convex polygons
+// A and B is S = conv(A u B), which holds every segment between them; for A, B not coplanar the
+// open segments between their relative interiors lie in the interior of S. So an occluder
+// triangle T can hide a set of pairs of positive measure only if T meets int(S):
+//   * T is left out when a facet plane of S, or T's own plane, weakly separates T from S;
+//   * T surely meets int(S) when its vertices lie strictly inside every facet plane;
+//   * otherwise (T touches S in a way these planes cannot settle) the pair is conservatively
+//     partial, and sampling decides.
+// A pair is fully hidden when one convex planar patch separates A from B strictly and every
+// segment between a vertex of A and a vertex of B meets it: the segments between two convex
+// polygons cross a plane that separates them inside the convex hull of the vertex-pair
+// crossings (central projection maps convex polygons to convex polygons), so all of them meet it.
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <algorithm>
+#include <mutex>
+#include <vector>
+
+#include "hrad/visibility/sampling.h"
+#include "hrad/visibility/visibility.h"
+
+namespace hrad {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_3;
+using Segment = K::Segment_3;
+using Triangle = K::Triangle_3;
+using TriangleIterator = std::vector<Triangle>::const_iterator;
+using Primitive = CGAL::AABB_triangle_primitive<K, TriangleIterator>;
+using AabbTraits = CGAL::AABB_traits<K, Primitive>;
+using Tree = CGAL::AABB_tree<AabbTraits>;
+
+Point to_point(const Vec3& v) { return Point(v.x(), v.y(), v.z()); }
+
+/// p lies in the closed triangle t; p is coplanar with t, t is not degenerate.
+bool in_closed_coplanar_triangle(const Point& p, const Triangle& t) {
+  for (int k = 0; k < 3; ++k)
+    if (CGAL::coplanar_orientation(t[k], t[k + 1], t[k + 2], p) == CGAL::NEGATIVE) return false;
+  return true;
+}
+
+/// a lies in the closed triangle t and b != a is coplanar with it: does the segment leave a into
+/// t? Yes iff b is on the inner side of (or on) every edge line through a (the tangent cone of t at a).
+bool enters_triangle_from(const Point& a, const Point& b, const Triangle& t) {
+  for (int k = 0; k < 3; ++k)
+    if (CGAL::coplanar_orientation(t[k], t[k + 1], t[k + 2], a) == CGAL::COLLINEAR &&
+        CGAL::coplanar_orientation(t[k], t[k + 1], t[k + 2], b) == CGAL::NEGATIVE)
+      return false;
+  return true;
+}
+
+/// The line through a and b, which lie strictly on opposite sides of t's plane, meets closed t.
+bool crossing_inside(const Point& a, const Point& b, const Triangle& t) {
+  const CGAL::Orientation s0 = CGAL::orientation(a, b, t[0], t[1]);
+  const CGAL::Orientation s1 = CGAL::orientation(a, b, t[1], t[2]);
+  const CGAL::Orientation s2 = CGAL::orientation(a, b, t[2], t[0]);
+  const bool pos = s0 == CGAL::POSITIVE || s1 == CGAL::POSITIVE || s2 == CGAL::POSITIVE;
+  const bool neg = s0 == CGAL::NEGATIVE || s1 == CGAL::NEGATIVE || s2 == CGAL::NEGATIVE;
+  return !(pos && neg);
+}
+
+/// Exact: the open segment (a, b), a != b, meets the closed non-degenerate triangle t.
+bool open_segment_meets_triangle(const Point& a, const Point& b, const Triangle& t) {
+  const CGAL::Orientation oa = CGAL::orientation(t[0], t[1], t[2], a);
+  const CGAL::Orientation ob = CGAL::orientation(t[0], t[1], t[2], b);
+  if (oa == ob && oa != CGAL::COPLANAR) return false;                      // same open side
+  if (oa != CGAL::COPLANAR && ob != CGAL::COPLANAR) return crossing_inside(a, b, t);
+  if (oa != CGAL::COPLANAR || ob != CGAL::COPLANAR) return false;          // meets the plane at an endpoint only
+  // The segment lies in t's plane.
+  const bool a_in = in_closed_coplanar_triangle(a, t);
+  const bool b_in = in_closed_coplanar_triangle(b, t);
+  if (a_in && b_in) return true;
+  if (a_in) return enters_triangle_from(a, b, t);
+  if (b_in) return enters_triangle_from(b, a, t);
+  return CGAL::do_intersect(Segment(a, b), t);  // neither endpoint inside: any contact is interior
+}
+
+/// Indices (0, j, k) of a non-collinear vertex triple of a convex polygon (counter-clockwise
+/// polygons give a counter-clockwise triple), or {-1, -1, -1} when all vertices are collinear.
+std::array<int, 3> plane_triple(std::span<const Point> poly) {
+  const int n = static_cast<int>(poly.size());
+  int best_j = -1, best_k = -1;
+  double best = -1.0;
+  for (int j = 1; j < n; ++j)
+    for (int k = j + 1; k < n; ++k) {
+      const double w = CGAL::cross_product(poly[j] - poly[0], poly[k] - poly[0]).squared_length();
+      if (w > best && !CGAL::collinear(poly[0], poly[j], poly[k])) { best = w; best_j = j; best_k = k; }
+    }
+  if (best_j < 0) return {-1, -1, -1};
+  return {0, best_j, best_k};
+}
+
+/// Some point of `pts` lies strictly in front of the plane of the polygon `poly`.
+bool any_strictly_in_front(std::span<const Point> poly, std::span<const Point> pts) {
+  const auto [i, j, k] = plane_triple(poly);
+  if (i < 0) return false;
+  for (const Point& p : pts)
+    if (CGAL::orientation(poly[i], poly[j], poly[k], p) == CGAL::POSITIVE) return true;
+  return false;
+}
+
+/// A supporting plane of the shaft through three of its points, oriented with the shaft on the
+/// non-negative side.
+struct Facet {
+  Point p, q, r;
+  CGAL::Orientation side(const Point& x) const { return CGAL::orientation(p, q, r, x); }
+};
+
+/// The facet planes of conv(points) (with repeats when a facet holds more than three points);
+/// empty when the points are coplanar. O(n^4) in the number of points, which is small here.
+std::vector<Facet> hull_facets(std::span<const Point> pts) {
+  std::vector<Facet> facets;
+  const std::size_t n = pts.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      for (std::size_t k = j + 1; k < n; ++k) {
+        if (CGAL::collinear(pts[i], pts[j], pts[k])) continue;
+        bool pos = false, neg = false;
+        for (std::size_t m = 0; m < n && !(pos && neg); ++m) {
+          const CGAL::Orientation o = CGAL::orientation(pts[i], pts[j], pts[k], pts[m]);
+          pos |= o == CGAL::POSITIVE;
+          neg |= o == CGAL::NEGATIVE;
+        }
+        if (pos && neg) continue;
+        if (!pos && !neg) return {};  // all coplanar: no 3D shaft
+        if (neg) facets.push_back({pts[i], pts[k], pts[j]});
+        else facets.push_back({pts[i], pts[j], pts[k]});
+      }
+  return facets;
+}
+
+/// Drops vertices collinear with their neighbours (T-vertices of elements): the hull is the same.
+std::vector<Point> corners(std::span<const Vec3> poly) {
+  std::vector<Point> all;
+  all.reserve(poly.size());
+  for (const Vec3& v : poly) all.push_back(to_point(v));
+  if (all.size() <= 3) return all;
+  std::vector<Point> out;
+  const std::size_t n = all.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (!CGAL::collinear(all[(i + n - 1) % n], all[i], all[(i + 1) % n])) out.push_back(all[i]);
+  return out.size() >= 3 ? out : all;
+}
+
+/// Box of some points (exact: the coordinates are the input doubles).
+CGAL::Bbox_3 bbox_of(std::span<const Point> pts) {
+  CGAL::Bbox_3 box = pts.front().bbox();
+  for (const Point& p : pts) box += p.bbox();
+  return box;
+}
+
+class CgalVisibility final : public Visibility {
+ public:
+  explicit CgalVisibility(const Scene& scene);
+
+  bool segment_blocked(const Vec3& a, int patch_a, const Vec3& b, int patch_b) const override {
+    counters().segment_queries.fetch_add(1, std::memory_order_relaxed);
+    return blocked(to_point(a), patch_a, to_point(b), patch_b);
+  }
+
+  PairClass classify(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b) const override {
+    const PairClass c = classify_corners(corners(a), patch_a, corners(b), patch_b);
+    count(c);
+    return c;
+  }
+
+  VisibilityEstimate estimate(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b, int samples,
+                              std::uint64_t seed) const override;
+
+  VisibilityEstimate estimate_from_point(const Vec3& x, int patch_x, std::span<const Vec3> b, int patch_b, int samples,
+                                         std::uint64_t seed) const override;
+
+  bool scene_has_occlusion() const override {
+    std::call_once(occlusion_once_, [this] { occlusion_ = decide_occlusion(); });
+    return occlusion_;
+  }
+
+ private:
+  bool blocked(const Point& a, int patch_a, const Point& b, int patch_b) const;
+  PairClass classify_corners(std::span<const Point> a, int patch_a, std::span<const Point> b, int patch_b) const;
+  bool patch_hides(int patch, std::span<const Point> a, std::span<const Point> b) const;
+  bool decide_occlusion() const;
+  int patch_of(TriangleIterator it) const { return triangle_patch_[it - triangles_.begin()]; }
+  void count(PairClass c) const {
+    VisibilityCounters& k = counters();
+    k.pair_queries.fetch_add(1, std::memory_order_relaxed);
+    switch (c) {
+      case PairClass::kFacingAway: k.pairs_facing_away.fetch_add(1, std::memory_order_relaxed); break;
+      case PairClass::kFullyVisible: k.pairs_visible.fetch_add(1, std::memory_order_relaxed); break;
+      case PairClass::kFullyHidden: k.pairs_hidden.fetch_add(1, std::memory_order_relaxed); break;
+      case PairClass::kPartial: k.pairs_partial.fetch_add(1, std::memory_order_relaxed); break;
+    }
+  }
+
+  std::vector<Triangle> triangles_;        ///< non-degenerate fan triangles of all patches
+  std::vector<int> triangle_patch_;
+  std::vector<std::pair<int, int>> patch_triangles_;  ///< [begin, end) into triangles_ per patch
+  std::vector<char> patch_planar_;         ///< all vertices exactly coplanar
+  std::vector<Point> vertices_;            ///< every patch vertex, for the convex-hull test
+  Tree tree_;
+  mutable std::once_flag occlusion_once_;
+  mutable bool occlusion_ = true;
+};
+
+CgalVisibility::CgalVisibility(const Scene& scene) {
+  patch_triangles_.reserve(scene.patches.size());
+  for (std::size_t p = 0; p < scene.patches.size(); ++p) {
+    const auto& v = scene.patches[p].vertices;
+    const int begin = static_cast<int>(triangles_.size());
+    bool planar = true;
+    std::array<int, 3> tri{-1, -1, -1};
+    std::vector<Point> pts;
+    for (const Vec3& x : v) pts.push_back(to_point(x));
+    for (const Point& x : pts) vertices_.push_back(x);
+    for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
+      const Triangle t(pts[0], pts[i], pts[i + 1]);
+      if (t.is_degenerate()) continue;  // a collinear fan triangle lies on an edge of the others
+      triangles_.push_back(t);
+      triangle_patch_.push_back(static_cast<int>(p));
+    }
+    tri = plane_triple(pts);
+    if (tri[0] >= 0)
+      for (const Point& x : pts) planar = planar && CGAL::orientation(pts[tri[0]], pts[tri[1]], pts[tri[2]], x) == CGAL::COPLANAR;
+    patch_triangles_.emplace_back(begin, static_cast<int>(triangles_.size()));
+    patch_planar_.push_back(planar ? 1 : 0);
+  }
+  tree_.rebuild(triangles_.cbegin(), triangles_.cend());
+}
+
+// Traversal that stops at the first triangle blocking the open segment.
+class BlockingTraversal {
+ public:
+  BlockingTraversal(const AabbTraits& traits, const std::vector<Triangle>& triangles, const std::vector<int>& patch_of,
+                    const Point& a, int patch_a, const Point& b, int patch_b)
+      : traits_(traits), triangles_(triangles), patch_of_(patch_of), a_(a), b_(b), pa_(patch_a), pb_(patch_b) {}
+  bool go_further() const { return !blocked_; }
+  void intersection(const Segment&, const Primitive& primitive) {
+    const int patch = patch_of_[primitive.id() - triangles_.begin()];
+    if (patch == pa_ || patch == pb_) return;
+    if (open_segment_meets_triangle(a_, b_, *primitive.id())) blocked_ = true;
+  }
+  template <class Node>
+  bool do_intersect(const Segment& s, const Node& node) const {
+    return traits_.do_intersect_object()(s, node.bbox());
+  }
+  bool blocked() const { return blocked_; }
+
+ private:
+  const AabbTraits& traits_;
+  const std::vector<Triangle>& triangles_;
+  const std::vector<int>& patch_of_;
+  const Point& a_;
+  const Point& b_;
+  int pa_, pb_;
+  bool blocked_ = false;
+};
+
+bool CgalVisibility::blocked(const Point& a, int patch_a, const Point& b, int patch_b) const {
+  if (a == b || triangles_.empty()) return false;  // the open segment is empty
+  BlockingTraversal traversal(tree_.traits(), triangles_, triangle_patch_, a, patch_a, b, patch_b);
+  tree_.traversal(Segment(a, b), traversal);
+  return traversal.blocked();
+}
+
+// Traversal that visits every triangle whose box overlaps the shaft's box and records the patches
+// whose triangles may meet the shaft's interior.
+class ShaftTraversal {
+ public:
+  ShaftTraversal(const std::vector<Triangle>& triangles, const std::vector<int>& patch_of,
+                 std::span<const Facet> facets, std::span<const Point> shaft_points, int patch_a, int patch_b,
+                 std::vector<int>* hits)
+      : triangles_(triangles), patch_of_(patch_of), facets_(facets), pts_(shaft_points), pa_(patch_a), pb_(patch_b),
+        hits_(hits) {}
+  bool go_further() const { return true; }
+  void intersection(const CGAL::Bbox_3&, const Primitive& primitive) {
+    const int patch = patch_of_[primitive.id() - triangles_.begin()];
+    if (patch == pa_ || patch == pb_) return;
+    if (!hits_->empty() && hits_->back() == patch) return;  // the patch's other triangle: already a hit
+    const Triangle& t = *primitive.id();
+    for (const Facet& f : facets_)
+      if (f.side(t[0]) != CGAL::POSITIVE && f.side(t[1]) != CGAL::POSITIVE && f.side(t[2]) != CGAL::POSITIVE)
+        return;  // a facet plane weakly separates t from the shaft
+    bool pos = false, neg = false;
+    for (const Point& p : pts_) {
+      const CGAL::Orientation o = CGAL::orientation(t[0], t[1], t[2], p);
+      pos |= o == CGAL::POSITIVE;
+      neg |= o == CGAL::NEGATIVE;
+    }
+    if (!(pos && neg)) return;  // t's plane weakly separates the shaft from t
+    hits_->push_back(patch);    // meets int(S), or touches it in a way left to sampling
+  }
+  template <class Node>
+  bool do_intersect(const CGAL::Bbox_3& box, const Node& node) const {
+    return CGAL::do_overlap(box, node.bbox());
+  }
+
+ private:
+  const std::vector<Triangle>& triangles_;
+  const std::vector<int>& patch_of_;
+  std::span<const Facet> facets_;
+  std::span<const Point> pts_;
+  int pa_, pb_;
+  std::vector<int>* hits_;
+};
+
+bool CgalVisibility::patch_hides(int patch, std::span<const Point> a, std::span<const Point> b) const {
+  const auto [begin, end] = patch_triangles_[patch];
+  // Every segment between a vertex of A and a vertex of B crosses the triangles [lo, hi), whose
+  // union is convex and planar, strictly between its endpoints.
+  auto separates = [&](int lo, int hi) {
+    const Triangle& t = triangles_[lo];
+    const CGAL::Orientation side_a = CGAL::orientation(t[0], t[1], t[2], a[0]);
+    if (side_a == CGAL::COPLANAR) return false;
+    for (const Point& p : a)
+      if (CGAL::orientation(t[0], t[1], t[2], p) != side_a) return false;
+    for (const Point& p : b)
+      if (CGAL::orientation(t[0], t[1], t[2], p) != CGAL::opposite(side_a)) return false;
+    for (const Point& p : a)
+      for (const Point& q : b) {
+        bool crossed = false;
+        for (int i = lo; i < hi && !crossed; ++i) crossed = crossing_inside(p, q, triangles_[i]);
+        if (!crossed) return false;
+      }
+    return true;
+  };
+  if (patch_planar_[patch]) return begin < end && separates(begin, end);
+  for (int i = begin; i < end; ++i)
+    if (separates(i, i + 1)) return true;
+  return false;
+}
+
+PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a, std::span<const Point> b,
+                                           int patch_b) const {
+  // Facing: some point of each must lie strictly in front of the other's plane.
+  if (a.size() >= 3 && !any_strictly_in_front(a, b)) return PairClass::kFacingAway;
+  if (!any_strictly_in_front(b, a)) return PairClass::kFacingAway;
+  std::vector<Point> pts(a.begin(), a.end());
+  pts.insert(pts.end(), b.begin(), b.end());
+  const std::vector<Facet> facets = hull_facets(pts);
+  if (facets.empty()) return PairClass::kFacingAway;  // coplanar: no segment leaves the plane
+  std::vector<int> hits;
+  ShaftTraversal traversal(triangles_, triangle_patch_, facets, pts, patch_a, patch_b, &hits);
+  if (!triangles_.empty()) tree_.traversal(bbox_of(pts), traversal);
+  if (hits.empty()) return PairClass::kFullyVisible;
+  std::sort(hits.begin(), hits.end());
+  hits.erase(std::unique(hits.begin(), hits.end()), hits.end());
+  for (int patch : hits)
+    if (patch_hides(patch, a, b)) return PairClass::kFullyHidden;
+  return PairClass::kPartial;
+}
+
+VisibilityEstimate CgalVisibility::estimate(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b,
+                                            int samples, std::uint64_t seed) const {
+  VisibilityEstimate e;
+  e.pair_class = classify(a, patch_a, b, patch_b);
+  switch (e.pair_class) {
+    case PairClass::kFacingAway:
+    case PairClass::kFullyHidden: e.fraction = 0.0; e.error = 0.0; return e;
+    case PairClass::kFullyVisible: e.fraction = 1.0; e.error = 0.0; return e;
+    case PairClass::kPartial: break;
+  }
+  detail::Rng rng(seed);
+  std::vector<Vec2> ua, ub;
+  detail::stratified_unit_square(samples, rng, &ua);
+  detail::stratified_unit_square(samples, rng, &ub);
+  const detail::PolygonSampler sa(a), sb(b);
+  int visible = 0;
+  for (int i = 0; i < samples; ++i) {
+    const Point pa = to_point(sa.point(ua[i].x(), ua[i].y()));
+    const Point pb = to_point(sb.point(ub[i].x(), ub[i].y()));
+    visible += blocked(pa, patch_a, pb, patch_b) ? 0 : 1;
+  }
+  counters().segment_queries.fetch_add(static_cast<std::uint64_t>(std::max(samples, 0)), std::memory_order_relaxed);
+  e.fraction = samples > 0 ? double(visible) / samples : 0.5;
+  e.error = samples > 0 ? detail::fraction_error(visible, samples) : 0.5;
+  return e;
+}
+
+VisibilityEstimate CgalVisibility::estimate_from_point(const Vec3& x, int patch_x, std::span<const Vec3> b,
+                                                       int patch_b, int samples, std::uint64_t seed) const {
+  counters().point_queries.fetch_add(1, std::memory_order_relaxed);
+  VisibilityEstimate e;
+  const Point px = to_point(x);
+  e.pair_class = classify_corners(std::span<const Point>(&px, 1), patch_x, corners(b), patch_b);
+  switch (e.pair_class) {
+    case PairClass::kFacingAway:
+    case PairClass::kFullyHidden: e.fraction = 0.0; e.error = 0.0; return e;
+    case PairClass::kFullyVisible: e.fraction = 1.0; e.error = 0.0; return e;
+    case PairClass::kPartial: break;
+  }
+  detail::Rng rng(seed);
+  std::vector<Vec2> ub;
+  detail::stratified_unit_square(samples, rng, &ub);
+  const detail::PolygonSampler sb(b);
+  int visible = 0;
+  for (const Vec2& s : ub) visible += blocked(px, patch_x, to_point(sb.point(s.x(), s.y())), patch_b) ? 0 : 1;
+  counters().segment_queries.fetch_add(static_cast<std::uint64_t>(std::max(samples, 0)), std::memory_order_relaxed);
+  e.fraction = samples > 0 ? double(visible) / samples : 0.5;
+  e.error = samples > 0 ? detail::fraction_error(visible, samples) : 0.5;
+  return e;
+}
+
+// No patch can block a segment between points of two patches that see each other (positive
+// cosines at both ends) when every patch's plane supports the convex hull of the scene with the
+// whole scene on its front side: both endpoints then lie in the closed front half-space of any
+// third patch, so the open segment meets its plane only if it lies in that plane (a grazing
+// segment, of zero cosine). Tested exactly against the hull's vertices.
+bool CgalVisibility::decide_occlusion() const {
+  if (triangles_.empty()) return false;
+  std::vector<Point> hull;
+  const Triangle& t0 = triangles_.front();
+  const bool flat = std::all_of(vertices_.begin(), vertices_.end(), [&](const Point& p) {
+    return CGAL::orientation(t0[0], t0[1], t0[2], p) == CGAL::COPLANAR;
+  });
+  if (flat) return false;  // every segment between two patches lies in their common plane
+  CGAL::extreme_points_3(vertices_, std::back_inserter(hull));
+  for (const Triangle& t : triangles_)
+    for (const Point& h : hull)
+      if (CGAL::orientation(t[0], t[1], t[2], h) == CGAL::NEGATIVE) return true;
+  return false;
+}
+
+}  // namespace
+
+std::unique_ptr<Visibility> make_visibility(const Scene& scene) { return std::make_unique<CgalVisibility>(scene); }
+
+}  // namespace hrad

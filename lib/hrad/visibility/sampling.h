@@ -1,0 +1,64 @@
+// Deterministic stratified sampling of convex planar polygons, shared by the visibility
+// estimators. No CGAL here.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "hrad/core/types.h"
+
+namespace hrad::detail {
+
+/// SplitMix64 (Steele, Lea & Flood 2014): small, fast, and the same stream on every platform.
+class Rng {
+ public:
+  explicit Rng(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next() {
+    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+  /// Uniform in [0, 1), 53 random bits.
+  double uniform() { return double(next() >> 11) * 0x1.0p-53; }
+  /// Uniform in [0, n).
+  std::uint64_t below(std::uint64_t n) { return next() % n; }
+
+ private:
+  std::uint64_t state_;
+};
+
+/// Maps the unit square onto a convex planar polygon, uniformly by area: u picks a triangle of
+/// the fan from vertex 0 (by area) and both coordinates are remapped into it with the
+/// square-root warp (Turk 1990, "Generating random points in triangles"). Points are formed as
+/// v0 + s (vi - v0) + t (vi+1 - v0), so a coordinate that is constant over the polygon (an
+/// axis-aligned wall) is reproduced exactly.
+class PolygonSampler {
+ public:
+  explicit PolygonSampler(std::span<const Vec3> polygon);
+  Vec3 point(double u, double v) const;
+  double area() const { return area_; }
+
+ private:
+  std::vector<Vec3> vertices_;
+  std::vector<double> cdf_;  ///< cumulative fan-triangle area, normalised to end at 1
+  double area_ = 0.0;
+};
+
+/// `n` points in [0, 1)^2, stratified: n distinct cells of a ceil(sqrt n)^2 grid chosen at random,
+/// one uniform point in each. Every point is uniform on the square, so estimates stay unbiased.
+void stratified_unit_square(int n, Rng& rng, std::vector<Vec2>* out);
+
+/// Error estimate of a visible fraction k/n from n stratified Bernoulli samples: the half-width of
+/// the Wilson score interval at one standard deviation (Wilson 1927). Unlike sqrt(p(1-p)/n) it is
+/// not zero when all samples agree (about 1/(2n) then), so a refinement oracle still sees doubt.
+double fraction_error(int visible, int n);
+
+/// Deterministic seed for one sampled query from the caller's seed and a stream index.
+inline std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t stream) {
+  Rng r(seed ^ (stream * 0xd1b54a32d192ed03ULL));
+  return r.next();
+}
+
+}  // namespace hrad::detail
