@@ -1,0 +1,21 @@
+// An 8-bit RGB image, row-major from the top-left pixel.
+#pragma once
+
+#include <vector>
+
+#include "hrad/render/tone_map.h"
+
+namespace hrad {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<Rgb8> pixels;  ///< width * height, row y at [y * width, (y + 1) * width)
+
+  Image() = default;
+  Image(int w, int h, Rgb8 fill = {0, 0, 0}) : width(w), height(h), pixels(static_cast<std::size_t>(w) * h, fill) {}
+  Rgb8& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
+  const Rgb8& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
+};
+
+}  // namespace hrad
