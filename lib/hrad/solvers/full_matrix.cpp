@@ -1,0 +1,137 @@
+#include "hrad/solvers/full_matrix.h"
+
+#include <atomic>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "hrad/solvers/solver_context.h"
+
+namespace hrad {
+namespace {
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// F(i, j) = F(element i -> element j). Row i evaluates the pairs (i, j > i), writing F(i, j) and
+// F(j, i) from one kernel call: each entry is written by exactly one task, so the result does not
+// depend on the schedule.
+RowMatrix fill_matrix(SolverContext& ctx, const ElementHierarchy& h, const std::vector<NodeId>& leaves) {
+  const int n = static_cast<int>(leaves.size());
+  RowMatrix f = RowMatrix::Zero(n, n);
+  const FormFactorEvaluator& evaluator = ctx.evaluator();
+  std::atomic<long long> done_pairs{0};
+  std::atomic<int> reported{0};
+  const long long total_pairs = static_cast<long long>(n) * (n - 1) / 2;
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 1), [&](const tbb::blocked_range<int>& range) {
+    for (int i = range.begin(); i < range.end(); ++i) {
+      const ElementNode& a = h.node(leaves[static_cast<std::size_t>(i)]);
+      for (int j = i + 1; j < n; ++j) {
+        const ElementNode& b = h.node(leaves[static_cast<std::size_t>(j)]);
+        const FormFactorEstimate e = evaluator.estimate(a.polygon(), a.patch, b.polygon(), b.patch);
+        f(i, j) = e.value;
+        f(j, i) = e.reverse;
+      }
+      const long long done = done_pairs.fetch_add(n - 1 - i) + (n - 1 - i);
+      const int tenth = total_pairs > 0 ? static_cast<int>(10 * done / total_pairs) : 10;
+      int seen = reported.load();
+      while (tenth > seen && !reported.compare_exchange_weak(seen, tenth)) {
+      }
+      if (tenth > seen && tenth < 10) ctx.progress(fmt::format("full: form factors {}0% of {} pairs", tenth, total_pairs));
+    }
+  });
+  return f;
+}
+
+}  // namespace
+
+SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, Solution* out) {
+  SolverContext ctx(scene, options, Method::kFull);
+  ElementHierarchy h(scene);
+  const double max_area = ctx.max_area();
+  ctx.summary().figures["max_area"] = max_area;
+  {
+    auto phase = ctx.phase("mesh");
+    h.subdivide_uniform(max_area);
+  }
+  const std::vector<NodeId> leaves = h.all_leaves();
+  const int n = static_cast<int>(leaves.size());
+  const std::size_t links = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+  if (!ctx.effects().bounces) {
+    ctx.set_direct("nothing reflects: B = E");
+    return ctx.finish(h, 0, out);
+  }
+  ctx.progress(fmt::format("full: {} elements, {} form factors", n, links));
+
+  RowMatrix f;
+  {
+    auto phase = ctx.phase("form_factors");
+    f = fill_matrix(ctx, h, leaves);
+  }
+
+  const int channels = ctx.channels();
+  Eigen::MatrixXd e(n, channels), rho(n, channels);
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < channels; ++c) {
+      e(i, c) = h.node(leaves[static_cast<std::size_t>(i)]).emission[c];
+      rho(i, c) = h.node(leaves[static_cast<std::size_t>(i)]).reflectance[c];
+    }
+  Eigen::MatrixXd b = e;
+  {
+    auto phase = ctx.phase("solve");
+    switch (options.linear_solver) {
+      case LinearSolver::kLu: {
+        // (I - diag(rho_c) F) B_c = E_c: one factorization per channel (rho differs per channel).
+        for (int c = 0; c < channels; ++c) {
+          Eigen::MatrixXd m = -(rho.col(c).asDiagonal() * f);
+          m.diagonal().array() += 1.0;
+          b.col(c) = m.partialPivLu().solve(e.col(c));
+        }
+        if (!b.allFinite()) {
+          ctx.set_failed("LU solve gave non-finite radiosity (singular system: is some reflectance 1?)");
+        } else {
+          ctx.set_direct(fmt::format("direct LU solve of {} x {} ({} channel{})", n, n, channels,
+                                     channels == 1 ? "" : "s"));
+        }
+        break;
+      }
+      case LinearSolver::kJacobi: {
+        while (true) {
+          Eigen::MatrixXd next = e + (rho.array() * (f * b).array()).matrix();
+          const double largest = next.cwiseAbs().maxCoeff();
+          const double change = (next - b).cwiseAbs().maxCoeff();
+          b.swap(next);
+          if (ctx.record_iteration(largest > 0.0 ? change / largest : (std::isfinite(change) ? 0.0 : NAN))) break;
+        }
+        break;
+      }
+      case LinearSolver::kGaussSeidel: {
+        while (true) {
+          double change = 0.0, largest = 0.0;
+          for (int i = 0; i < n; ++i)
+            for (int c = 0; c < channels; ++c) {
+              const double value = e(i, c) + rho(i, c) * f.row(i).dot(b.col(c));
+              change = std::max(change, std::abs(value - b(i, c)));
+              largest = std::max(largest, std::abs(value));
+              b(i, c) = value;
+            }
+          if (!std::isfinite(change) || !std::isfinite(largest)) change = NAN;
+          if (ctx.record_iteration(largest > 0.0 ? change / largest : change)) break;
+        }
+        break;
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    ElementNode& node = h.node(leaves[static_cast<std::size_t>(i)]);
+    for (int c = 0; c < channels; ++c) node.radiosity[c] = b(i, c);
+    if (channels == 1) copy_gray(node.radiosity);
+  }
+  h.pull_radiosity();
+  return ctx.finish(h, links, out);
+}
+
+}  // namespace hrad

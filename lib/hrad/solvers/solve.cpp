@@ -1,0 +1,127 @@
+#include "hrad/solvers/solve.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "hrad/core/error.h"
+#include "hrad/solvers/full_matrix.h"
+#include "hrad/solvers/hierarchical.h"
+#include "hrad/solvers/substructuring.h"
+
+namespace hrad {
+namespace {
+
+// Options where 0 means "automatic" or "unused": finite and >= 0.
+void check_non_negative(const char* option, double value, const char* zero_means) {
+  if (!std::isfinite(value) || value < 0.0)
+    throw Error(fmt::format("{} must be >= 0 (0 = {}), got {}", option, zero_means, value));
+}
+
+void check_positive(const char* option, double value) {
+  if (!std::isfinite(value) || value <= 0.0) throw Error(fmt::format("{} must be > 0, got {}", option, value));
+}
+
+}  // namespace
+
+void validate_options(const SolveOptions& o) {
+  switch (o.method) {
+    case Method::kFull:
+    case Method::kSubstructure:
+    case Method::kHierarchical:
+      break;
+    default:
+      throw Error(fmt::format("--method: unknown method {}", static_cast<int>(o.method)));
+  }
+  check_non_negative("--max-area", o.max_area, "automatic");
+  check_non_negative("--patch-area", o.patch_area, "the input polygons");
+  check_non_negative("--feps", o.feps, "unused");
+  check_non_negative("--bfeps", o.bfeps, "unused");
+  check_non_negative("--aeps", o.aeps, "automatic");
+  check_positive("--tolerance", o.tolerance);
+  if (o.max_iterations < 1) throw Error(fmt::format("--max-iterations must be >= 1, got {}", o.max_iterations));
+  switch (o.linear_solver) {
+    case LinearSolver::kLu:
+    case LinearSolver::kJacobi:
+    case LinearSolver::kGaussSeidel:
+      break;
+    default:
+      throw Error(fmt::format("--linear-solver: unknown solver {}", static_cast<int>(o.linear_solver)));
+  }
+  if (o.effects != EffectsMode::kAuto && o.effects != EffectsMode::kAll)
+    throw Error(fmt::format("--effects: unknown mode {}", static_cast<int>(o.effects)));
+  if (o.visibility_samples < 1)
+    throw Error(fmt::format("--visibility-samples must be >= 1, got {}", o.visibility_samples));
+  if (o.threads < 0) throw Error(fmt::format("--threads must be >= 0 (0 = all cores), got {}", o.threads));
+}
+
+SolveSummary solve(const Scene& scene, const SolveOptions& options, Solution* out) {
+  validate_options(options);
+  switch (options.method) {
+    case Method::kFull:
+      return solve_full_matrix(scene, options, out);
+    case Method::kSubstructure:
+      return solve_substructuring(scene, options, out);
+    case Method::kHierarchical:
+      return solve_hierarchical(scene, options, out);
+  }
+  throw Error("--method: unknown method");
+}
+
+std::string_view to_string(Method method) {
+  switch (method) {
+    case Method::kFull: return "full";
+    case Method::kSubstructure: return "substructure";
+    case Method::kHierarchical: return "hierarchical";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(Termination termination) {
+  switch (termination) {
+    case Termination::kConverged: return "converged";
+    case Termination::kMaxIterations: return "max_iterations";
+    case Termination::kDirect: return "direct";
+    case Termination::kFailed: return "failed";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(LinearSolver solver) {
+  switch (solver) {
+    case LinearSolver::kLu: return "lu";
+    case LinearSolver::kJacobi: return "jacobi";
+    case LinearSolver::kGaussSeidel: return "gauss_seidel";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(EffectsMode mode) {
+  switch (mode) {
+    case EffectsMode::kAuto: return "auto";
+    case EffectsMode::kAll: return "all";
+  }
+  return "unknown";
+}
+
+Method parse_method(std::string_view text) {
+  if (text == "full") return Method::kFull;
+  if (text == "substructure" || text == "substructuring") return Method::kSubstructure;
+  if (text == "hierarchical") return Method::kHierarchical;
+  throw Error(fmt::format("--method must be full, substructure or hierarchical, got '{}'", text));
+}
+
+LinearSolver parse_linear_solver(std::string_view text) {
+  if (text == "lu") return LinearSolver::kLu;
+  if (text == "jacobi") return LinearSolver::kJacobi;
+  if (text == "gauss_seidel" || text == "gauss-seidel") return LinearSolver::kGaussSeidel;
+  throw Error(fmt::format("--linear-solver must be lu, jacobi or gauss_seidel, got '{}'", text));
+}
+
+EffectsMode parse_effects_mode(std::string_view text) {
+  if (text == "auto") return EffectsMode::kAuto;
+  if (text == "all") return EffectsMode::kAll;
+  throw Error(fmt::format("--effects must be auto or all, got '{}'", text));
+}
+
+}  // namespace hrad

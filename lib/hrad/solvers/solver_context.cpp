@@ -1,0 +1,183 @@
+#include "hrad/solvers/solver_context.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+
+#include "hrad/visibility/visibility.h"
+
+namespace hrad {
+
+struct SolverContext::ThreadLimit {
+  explicit ThreadLimit(int threads)
+      : control(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads)) {}
+  tbb::global_control control;
+};
+
+double automatic_max_area(const Scene& scene) { return scene.total_area() / kAutoElements; }
+
+SolverContext::SolverContext(const Scene& scene, const SolveOptions& options, Method method)
+    : scene_(scene), options_(options) {
+  validate_options(options);
+  summary_.method = method;
+  summary_.patches = scene.patches.size();
+  if (options.threads > 0) thread_limit_ = std::make_unique<ThreadLimit>(options.threads);
+  {
+    auto p = phase("effects");
+    const bool may_need_visibility = options.effects == EffectsMode::kAll || !scene_has_no_reflection(scene);
+    if (may_need_visibility) visibility_ = make_visibility(scene);
+    summary_.effects = analyse_effects(scene, options.effects, visibility_.get());
+  }
+  evaluator_ = std::make_unique<FormFactorEvaluator>(scene, summary_.effects, visibility_.get(),
+                                                     options.visibility_samples);
+}
+
+SolverContext::~SolverContext() = default;
+
+double SolverContext::max_area() const {
+  return options_.max_area > 0.0 ? options_.max_area : automatic_max_area(scene_);
+}
+
+void SolverContext::add_seconds(const std::string& name, double seconds) {
+  for (auto& [n, s] : summary_.seconds)
+    if (n == name) {
+      s += seconds;
+      return;
+    }
+  summary_.seconds.emplace_back(name, seconds);
+}
+
+void SolverContext::progress(std::string_view line) const {
+  if (options_.progress) options_.progress(line);
+}
+
+bool SolverContext::record_iteration(double change) {
+  ++summary_.iterations;
+  summary_.change_per_iteration.push_back(change);
+  if (!std::isfinite(change)) {
+    set_failed(fmt::format("non-finite radiosity at iteration {}", summary_.iterations));
+    return true;
+  }
+  if (change < options_.tolerance) {
+    summary_.termination = Termination::kConverged;
+    summary_.message = fmt::format("converged in {} iterations (relative change {:.3g} < tolerance {:.3g})",
+                                   summary_.iterations, change, options_.tolerance);
+    return true;
+  }
+  if (summary_.iterations >= options_.max_iterations) {
+    summary_.termination = Termination::kMaxIterations;
+    summary_.message = fmt::format("not converged: {} iterations reached with relative change {:.3g} >= tolerance {:.3g}",
+                                   summary_.iterations, change, options_.tolerance);
+    return true;
+  }
+  if (summary_.iterations % 100 == 0)
+    progress(fmt::format("iteration {}: relative change {:.3g}", summary_.iterations, change));
+  return false;
+}
+
+void SolverContext::set_direct(std::string message) {
+  summary_.termination = Termination::kDirect;
+  summary_.message = std::move(message);
+}
+
+void SolverContext::set_failed(std::string message) {
+  summary_.termination = Termination::kFailed;
+  summary_.message = std::move(message);
+}
+
+SolveSummary SolverContext::finish(const ElementHierarchy& hierarchy, std::size_t links, Solution* out) {
+  std::size_t leaves = 0;
+  for (const ElementNode& n : hierarchy.nodes()) leaves += n.is_leaf() ? 1 : 0;
+  summary_.elements = leaves;
+  summary_.links = links;
+  summary_.form_factor_evaluations = evaluator_->evaluations();
+  summary_.visibility_queries = evaluator_->visibility_queries();
+  summary_.figures["culled_pairs"] = static_cast<double>(evaluator_->culled_pairs());
+  if (visibility_) {
+    summary_.figures["segment_queries"] =
+        static_cast<double>(visibility_->counters().segment_queries.load(std::memory_order_relaxed));
+  }
+  if (out != nullptr) {
+    auto p = phase("output");
+    *out = hierarchy.to_solution();
+  }
+  summary_.peak_memory_bytes = peak_memory_bytes();
+  summary_.total_seconds = total_.seconds();
+  return summary_;
+}
+
+double relative_change(std::span<const Rgb> before, std::span<const Rgb> after, int channels) {
+  double change = 0.0, largest = 0.0;
+  for (std::size_t i = 0; i < after.size(); ++i)
+    for (int c = 0; c < channels; ++c) {
+      change = std::max(change, std::abs(after[i][c] - before[i][c]));
+      largest = std::max(largest, std::abs(after[i][c]));
+    }
+  if (!std::isfinite(change) || !std::isfinite(largest)) return NAN;
+  return largest > 0.0 ? change / largest : 0.0;
+}
+
+std::size_t peak_memory_bytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) {
+      std::istringstream in(line.substr(6));
+      std::size_t kb = 0;
+      in >> kb;
+      return kb * 1024;
+    }
+  }
+  return 0;
+}
+
+void gather(ElementHierarchy& hierarchy, std::span<const Link> links) {
+  for (std::size_t i = 0; i < hierarchy.size(); ++i) hierarchy.node(static_cast<NodeId>(i)).gathered = Rgb::Zero();
+  for (const Link& l : links) hierarchy.node(l.receiver).gathered += l.form_factor * hierarchy.node(l.source).radiosity;
+}
+
+namespace {
+
+// HSA 1991 PushPullRad: returns the node's new radiosity; tracks the leaves' largest change.
+Rgb push_pull_node(ElementHierarchy& h, NodeId id, const Rgb& down, int channels, double* change, double* largest) {
+  ElementNode& n = h.node(id);
+  const Rgb total = down + n.gathered;
+  if (n.is_leaf()) {
+    const Rgb b = n.emission + n.reflectance * total;
+    for (int c = 0; c < channels; ++c) {
+      *change = std::max(*change, std::abs(b[c] - n.radiosity[c]));
+      *largest = std::max(*largest, std::abs(b[c]));
+    }
+    n.radiosity = b;
+    return b;
+  }
+  const NodeId first = n.first_child;
+  Rgb sum = Rgb::Zero();
+  double area = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const Rgb b = push_pull_node(h, first + k, total, channels, change, largest);
+    const double a = h.node(first + k).area;
+    sum += a * b;
+    area += a;
+  }
+  ElementNode& m = h.node(id);  // no reallocation happens here, but keep the access explicit
+  m.radiosity = sum / area;
+  return m.radiosity;
+}
+
+}  // namespace
+
+double push_pull(ElementHierarchy& hierarchy, int channels) {
+  double change = 0.0, largest = 0.0;
+  for (int p = 0; p < hierarchy.patch_count(); ++p)
+    push_pull_node(hierarchy, hierarchy.root(p), Rgb::Zero(), channels, &change, &largest);
+  if (!std::isfinite(change) || !std::isfinite(largest)) return NAN;
+  return largest > 0.0 ? change / largest : 0.0;
+}
+
+}  // namespace hrad
