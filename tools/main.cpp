@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "hrad 0.1.0");
   hrad::cli::add_info_command(app);
+  hrad::cli::add_render_command(app);
+  hrad::cli::add_solve_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -30,7 +30,7 @@ class Rasterizer {
   /// relative tolerance `depth_bias` (so edges lying on a filled polygon show); a negative
   /// `depth_bias` skips the test. The buffers are not changed.
   void trace_segment(const Vec3& a, const Vec3& b, const std::function<void(int, int)>& plot,
-                     double depth_bias = 1e-4) const;
+                     double depth_bias = 2e-3) const;
 
   bool covered(int x, int y) const { return depth_[index(x, y)] < kFar; }
   double depth(int x, int y) const { return depth_[index(x, y)]; }
