@@ -1,0 +1,95 @@
+#include "hrad/io/report_json.h"
+
+#include "hrad/geometry/polygon.h"
+#include "hrad/io/atomic_file.h"
+
+namespace hrad {
+namespace {
+
+nlohmann::json rgb(const Rgb& v) { return nlohmann::json::array({v[0], v[1], v[2]}); }
+
+}  // namespace
+
+nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options, const SolveSummary& summary,
+                                 const Solution& solution) {
+  using nlohmann::json;
+  json j;
+  j["scene"] = scene.path;
+  j["method"] = std::string(to_string(summary.method));
+  j["options"] = {{"max_area", options.max_area},
+                  {"patch_area", options.patch_area},
+                  {"feps", options.feps},
+                  {"bfeps", options.bfeps},
+                  {"aeps", options.aeps},
+                  {"tolerance", options.tolerance},
+                  {"max_iterations", options.max_iterations},
+                  {"linear_solver", std::string(to_string(options.linear_solver))},
+                  {"effects", std::string(to_string(options.effects))},
+                  {"visibility_samples", options.visibility_samples},
+                  {"threads", options.threads}};
+  j["termination"] = std::string(to_string(summary.termination));
+  j["status"] = std::string(to_string(summary.termination));
+  j["message"] = summary.message;
+  j["iterations"] = summary.iterations;
+  j["elements"] = summary.elements;
+  j["links"] = summary.links;
+  j["patch_count"] = summary.patches;
+  j["form_factor_evaluations"] = summary.form_factor_evaluations;
+  j["visibility_queries"] = summary.visibility_queries;
+  json seconds = json::object();
+  seconds["total"] = summary.total_seconds;
+  for (const auto& [name, s] : summary.seconds) seconds[name] = s;
+  j["seconds"] = seconds;
+  j["effects"] = {{"visibility", summary.effects.visibility},
+                  {"color_channels", summary.effects.color_channels},
+                  {"bounces", summary.effects.bounces},
+                  {"cull_facing_away", summary.effects.cull_facing_away},
+                  {"reasons", summary.effects.reasons}};
+  j["change_per_iteration"] = summary.change_per_iteration;
+  j["peak_memory_bytes"] = summary.peak_memory_bytes;
+  json figures = json::object();
+  for (const auto& [name, v] : summary.figures) figures[name] = v;
+  j["figures"] = figures;
+
+  // Energy: the elements' areas from their polygons (faces may carry T-vertices, which do not
+  // change the area).
+  double emitted = 0.0, radiated = 0.0;
+  for (std::size_t f = 0; f < solution.faces.size(); ++f) {
+    std::vector<Vec3> poly;
+    for (int v : solution.faces[f]) poly.push_back(solution.vertices[static_cast<std::size_t>(v)]);
+    const double area = polygon_area(poly);
+    const Patch& patch = scene.patches[static_cast<std::size_t>(solution.face_patch[f])];
+    emitted += area * scene.material_of(patch).emission.mean();
+    radiated += area * solution.face_radiosity[f].mean();
+  }
+  j["energy"] = {{"emitted_power", emitted}, {"radiosity_power", radiated}};
+
+  json patches = json::array();
+  for (std::size_t i = 0; i < scene.faces.size(); ++i) {
+    const InputFace& face = scene.faces[i];
+    Rgb sum = Rgb::Zero();
+    double area = 0.0;
+    for (int p : face.patches) {
+      const double a = scene.patches[static_cast<std::size_t>(p)].area;
+      if (static_cast<std::size_t>(p) < solution.patch_radiosity.size()) sum += a * solution.patch_radiosity[static_cast<std::size_t>(p)];
+      area += a;
+    }
+    const Material& m = scene.materials[static_cast<std::size_t>(face.material)];
+    patches.push_back({{"face", i},
+                       {"line", face.line},
+                       {"group", face.group},
+                       {"material", m.name},
+                       {"area", face.area},
+                       {"emission", rgb(m.emission)},
+                       {"reflectance", rgb(m.reflectance)},
+                       {"radiosity", rgb(area > 0.0 ? Rgb(sum / area) : Rgb::Zero())}});
+  }
+  j["patches"] = patches;
+  return j;
+}
+
+void write_json_file(const std::string& path, const nlohmann::json& report) {
+  write_file_atomically(path, [&](std::ostream& out) { out << report.dump(2) << "\n"; });
+}
+
+}  // namespace hrad

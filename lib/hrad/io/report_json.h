@@ -1,0 +1,31 @@
+// The solve report (`hrad solve --report R.json`): the interface other tools and checks read.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "hrad/core/scene.h"
+#include "hrad/core/solution.h"
+#include "hrad/solvers/solve.h"
+
+namespace hrad {
+
+/// The report of one solve:
+///   scene, method, options {max_area, patch_area, feps, bfeps, aeps, tolerance, max_iterations,
+///     linear_solver, effects, visibility_samples, threads},
+///   termination ("converged" | "max_iterations" | "direct" | "failed"), status (the same), message,
+///   iterations, elements, links, patch_count (Scene::patches), form_factor_evaluations, visibility_queries,
+///   seconds {total, <phase>: s, ...}, effects {visibility, color_channels, bounces, cull_facing_away, reasons},
+///   change_per_iteration [..], peak_memory_bytes, figures {name: value},
+///   energy {emitted_power, radiosity_power}: sums of area * E and area * B over the elements (channel means),
+///   patches: one entry per input face (Scene::faces) in file order:
+///     {face, line, group, material, area, emission [r,g,b], reflectance [r,g,b], radiosity [r,g,b]}
+///     where radiosity is the area average over the face's patches.
+nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options, const SolveSummary& summary,
+                                 const Solution& solution);
+
+/// Writes `report` (indented) to `path` atomically; hrad::Error naming `path` on failure.
+void write_json_file(const std::string& path, const nlohmann::json& report);
+
+}  // namespace hrad

@@ -1,0 +1,125 @@
+// hrad solve SCENE [--method full|substructure|hierarchical] [options] [--report R.json] [--out S.ply]
+//
+// Solves the radiosity of a scene (OBJ + MTL) and writes a report and the leaf mesh. Both outputs
+// are optional and written atomically; progress goes to stderr, a summary to stdout.
+//
+//   --method M             full (classical, n x n matrix), substructure (patches shoot, elements
+//                          receive) or hierarchical (HSA 1991 quadtrees and links); default hierarchical
+//   --max-area A           full/substructure: largest element area, scene units^2
+//                          (default: total area / 1000)
+//   --patch-area A         substructure: largest shooting-patch area (default: the input polygons)
+//   --feps F               hierarchical: form-factor refinement tolerance (default automatic)
+//   --bfeps B              hierarchical: B*F refinement tolerance (radiosity units; default unused)
+//   --aeps A               hierarchical: smallest element area (default automatic)
+//   --tolerance T          iterations stop when the largest radiosity change / largest radiosity < T
+//                          (default 1e-6)
+//   --max-iterations N     iteration limit (default 10000); reaching it is a status, not an error
+//   --linear-solver S      full: lu (default, direct), jacobi or gauss_seidel
+//   --effects auto|all     auto (default) simulates only what the scene needs (visibility, colour,
+//                          bounces); all forces everything on (same answer, slower)
+//   --visibility-samples K point pairs per partially visible pair (default 16)
+//   --threads N            worker threads (default: all cores)
+//   --report R.json        the solve report (see lib/hrad/io/report_json.h)
+//   --out S.ply            the leaf mesh with tone-mapped vertex colours and per-face radiosity
+//   --exposure X           vertex-colour exposure for --out (default: automatic, emitters excluded)
+//   --quiet                no progress on stderr
+// Options out of range (zero, negative or NaN tolerances and areas, unknown names) are an error
+// with exit status 1 before the scene is read.
+#include <cmath>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "commands.h"
+#include "hrad/core/error.h"
+#include "hrad/io/obj_reader.h"
+#include "hrad/io/report_json.h"
+#include "hrad/io/solution_ply.h"
+#include "hrad/render/tone_map.h"
+#include "hrad/solvers/solve.h"
+
+namespace hrad::cli {
+
+void add_solve_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("solve", "Solve the radiosity of a scene (full, substructure or hierarchical)");
+  struct Args {
+    std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", report, out;
+    double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
+    int max_iterations = 10000, visibility_samples = 16, threads = 0;
+    bool quiet = false;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("SCENE", args->scene, "Scene file (.obj)")->required();
+  cmd->add_option("--method", args->method, "full | substructure | hierarchical (default hierarchical)");
+  cmd->add_option("--max-area", args->max_area, "Full/substructure: largest element area (default total/1000)");
+  cmd->add_option("--patch-area", args->patch_area, "Substructure: largest shooting-patch area (default: input polygons)");
+  cmd->add_option("--feps", args->feps, "Hierarchical: form-factor tolerance (default automatic)");
+  cmd->add_option("--bfeps", args->bfeps, "Hierarchical: B*F tolerance (default unused)");
+  cmd->add_option("--aeps", args->aeps, "Hierarchical: smallest element area (default automatic)");
+  cmd->add_option("--tolerance", args->tolerance, "Largest relative radiosity change to stop iterating (default 1e-6)");
+  cmd->add_option("--max-iterations", args->max_iterations, "Iteration limit (default 10000)");
+  cmd->add_option("--linear-solver", args->linear_solver, "Full: lu | jacobi | gauss_seidel (default lu)");
+  cmd->add_option("--effects", args->effects, "auto | all (default auto)");
+  cmd->add_option("--visibility-samples", args->visibility_samples, "Point pairs per partially visible pair (default 16)");
+  cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
+  cmd->add_option("--report", args->report, "Write the solve report (JSON) here");
+  cmd->add_option("--out", args->out, "Write the leaf mesh (PLY) here");
+  cmd->add_option("--exposure", args->exposure, "Vertex-colour exposure for --out (default automatic)");
+  cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
+  cmd->callback([cmd, args] {
+    SolveOptions o;
+    o.method = parse_method(args->method);
+    o.linear_solver = parse_linear_solver(args->linear_solver);
+    o.effects = parse_effects_mode(args->effects);
+    // Given on the command line, an area or tolerance must be a positive number (0 is "automatic"
+    // only when the option is left out).
+    for (const auto& [name, value] : {std::pair<const char*, double>{"--max-area", args->max_area},
+                                      {"--patch-area", args->patch_area},
+                                      {"--feps", args->feps},
+                                      {"--bfeps", args->bfeps},
+                                      {"--aeps", args->aeps},
+                                      {"--tolerance", args->tolerance},
+                                      {"--exposure", args->exposure}}) {
+      if (cmd->count(name) > 0 && !(std::isfinite(value) && value > 0.0))
+        throw Error(fmt::format("{} must be > 0, got {}", name, value));
+    }
+    o.max_area = args->max_area;
+    o.patch_area = args->patch_area;
+    o.feps = args->feps;
+    o.bfeps = args->bfeps;
+    o.aeps = args->aeps;
+    o.tolerance = args->tolerance;
+    o.max_iterations = args->max_iterations;
+    o.visibility_samples = args->visibility_samples;
+    o.threads = args->threads;
+    if (!args->quiet) o.progress = [](std::string_view line) { std::cerr << "hrad solve: " << line << "\n"; };
+    validate_options(o);
+
+    std::vector<std::string> warnings;
+    const Scene scene = read_obj_scene(args->scene, &warnings);
+    for (const std::string& w : warnings) std::cerr << w << "\n";
+    Solution solution;
+    const SolveSummary summary = solve(scene, o, &solution);
+
+    if (!args->report.empty()) write_json_file(args->report, solve_report_json(scene, o, summary, solution));
+    if (!args->out.empty()) {
+      double exposure = args->exposure;
+      if (exposure <= 0.0) {
+        std::vector<bool> emitter(scene.patches.size());
+        for (std::size_t p = 0; p < scene.patches.size(); ++p) emitter[p] = scene.material_of(scene.patches[p]).is_emitter();
+        exposure = auto_exposure(solution, emitter);
+      }
+      write_solution_ply(args->out, solution, exposure);
+    }
+    std::cout << fmt::format("{}: {} on {} patches: {} elements, {} links, {} form factors, {} visibility queries\n",
+                             scene.path, to_string(summary.method), summary.patches, summary.elements, summary.links,
+                             summary.form_factor_evaluations, summary.visibility_queries);
+    std::cout << fmt::format("  {}: {}\n", to_string(summary.termination), summary.message);
+    std::string phases;
+    for (const auto& [name, s] : summary.seconds) phases += fmt::format(" {} {:.3f}", name, s);
+    std::cout << fmt::format("  seconds: total {:.3f} ({} )\n", summary.total_seconds, phases);
+    for (const std::string& r : summary.effects.reasons) std::cout << "  effects: " << r << "\n";
+  });
+}
+
+}  // namespace hrad::cli
