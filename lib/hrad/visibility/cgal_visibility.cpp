@@ -378,20 +378,38 @@ VisibilityEstimate CgalVisibility::estimate(std::span<const Vec3> a, int patch_a
     case PairClass::kFullyVisible: e.fraction = 1.0; e.error = 0.0; return e;
     case PairClass::kPartial: break;
   }
+  // Only mutually facing point pairs count: (a, b) has positive cosines at both ends iff b lies
+  // strictly in front of A's plane and a strictly in front of B's plane, so these pairs form the
+  // product of the two clipped polygons; rejection keeps every test exact.
+  const std::vector<Point> ca = corners(a), cb = corners(b);
+  const auto ta = plane_triple(ca), tb = plane_triple(cb);
+  auto in_front = [](std::span<const Point> poly, const std::array<int, 3>& t, const Point& p) {
+    return CGAL::orientation(poly[t[0]], poly[t[1]], poly[t[2]], p) == CGAL::POSITIVE;
+  };
+  const bool a_all_front = std::all_of(ca.begin(), ca.end(), [&](const Point& p) { return in_front(cb, tb, p); });
+  const bool b_all_front = std::all_of(cb.begin(), cb.end(), [&](const Point& p) { return in_front(ca, ta, p); });
   detail::Rng rng(seed);
   std::vector<Vec2> ua, ub;
   detail::stratified_unit_square(samples, rng, &ua);
   detail::stratified_unit_square(samples, rng, &ub);
   const detail::PolygonSampler sa(a), sb(b);
-  int visible = 0;
+  int visible = 0, facing = 0;
   for (int i = 0; i < samples; ++i) {
     const Point pa = to_point(sa.point(ua[i].x(), ua[i].y()));
     const Point pb = to_point(sb.point(ub[i].x(), ub[i].y()));
+    if (!a_all_front && !in_front(cb, tb, pa)) continue;
+    if (!b_all_front && !in_front(ca, ta, pb)) continue;
+    ++facing;
     visible += blocked(pa, patch_a, pb, patch_b) ? 0 : 1;
   }
-  counters().segment_queries.fetch_add(static_cast<std::uint64_t>(std::max(samples, 0)), std::memory_order_relaxed);
-  e.fraction = samples > 0 ? double(visible) / samples : 0.5;
-  e.error = samples > 0 ? detail::fraction_error(visible, samples) : 0.5;
+  counters().segment_queries.fetch_add(static_cast<std::uint64_t>(facing), std::memory_order_relaxed);
+  if (facing == 0) {  // the facing parts are too small for these samples to find
+    e.fraction = 0.0;
+    e.error = 0.5;
+    return e;
+  }
+  e.fraction = double(visible) / facing;
+  e.error = detail::fraction_error(visible, facing);
   return e;
 }
 

@@ -53,7 +53,9 @@ class Visibility {
   virtual PairClass classify(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b) const = 0;
 
   /// Classifies the pair and, only when partial, samples `samples` stratified point pairs
-  /// (deterministic in `seed`) to estimate the visible fraction.
+  /// (deterministic in `seed`) to estimate the visible fraction. Only mutually facing sample
+  /// pairs (each point strictly in front of the other polygon's plane, the pairs the form factor
+  /// weighs) count; the fraction is visible / facing and the error the Wilson half-width.
   virtual VisibilityEstimate estimate(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b,
                                       int samples, std::uint64_t seed) const = 0;
 
