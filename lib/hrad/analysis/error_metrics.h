@@ -1,0 +1,88 @@
+// Error of a radiosity Solution against a reference Solution or an analytic field, measured on
+// one fixed set of sample points per patch so that solutions on different meshes compare fairly.
+//
+// Sampling (patch_samples): with m = max(1, round(sqrt(samples_per_patch))),
+//   * a quad patch v0 v1 v2 v3 is sampled at the m x m cell centres (u, v) = ((i + 1/2)/m,
+//     (j + 1/2)/m) of its bilinear map x(u, v) = (1-u)(1-v) v0 + u(1-v) v1 + uv v2 + (1-u)v v3;
+//     each point stands for the area w = |x_u x x_v| / m^2 (the Jacobian at the centre; for a
+//     planar quad the Jacobian is linear in (u, v), so the weights add up to the area exactly);
+//   * a triangle is cut into m^2 congruent triangles (m per side) and sampled at their centroids,
+//     each standing for area / m^2; a polygon with more vertices is fanned into triangles.
+// The value of a Solution at a sample of patch p is the constant face_radiosity of the leaf of
+// patch p that contains the point (point in convex polygon in the patch's plane, with a relative
+// tolerance of 1e-6 of the patch size, which covers float-rounded PLY vertices); when none does (a gap in the mesh), the
+// leaf whose nearest edge is least violated is used and the sample counts as `unmatched`.
+//
+// Definitions (|.| is the Euclidean norm over the three channels, w_k the sample areas):
+//   relative_l2   = sqrt( sum_k w_k |B(x_k) - Bref(x_k)|^2 / sum_k w_k |Bref(x_k)|^2 )
+//   relative_linf = max_k |B(x_k) - Bref(x_k)| / max_k |Bref(x_k)|
+//   patch_relative_l2[p], face_relative_l2[f]: relative_l2 restricted to the samples of patch p,
+//     or to the samples falling in leaf f of the evaluated solution (a leaf that no sample falls
+//     in is compared at its centroid). 0/0 is 0; x/0 with x > 0 is +infinity.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "hrad/core/scene.h"
+#include "hrad/core/solution.h"
+
+namespace hrad {
+
+struct SurfaceSample {
+  Vec3 position;
+  double area = 0.0;  ///< the area the sample stands for
+  int patch = -1;
+};
+
+/// The fixed samples described above, patch by patch in Scene order.
+std::vector<SurfaceSample> patch_samples(const Scene& scene, int samples_per_patch);
+
+struct ErrorMetrics {
+  double relative_l2 = 0.0;
+  double relative_linf = 0.0;
+  double rms_absolute = 0.0;               ///< sqrt(sum w |B - Bref|^2 / sum w)
+  std::vector<double> patch_relative_l2;   ///< per Scene patch
+  std::vector<double> face_relative_l2;    ///< per face of the evaluated solution
+  std::size_t samples = 0;
+  std::size_t unmatched = 0;               ///< samples no leaf contained (in either solution)
+};
+
+/// Error of `solution` against `reference` (both on `scene`'s patches, any meshes).
+ErrorMetrics compare_solutions(const Scene& scene, const Solution& solution, const Solution& reference,
+                               int samples_per_patch = 256);
+
+/// Error of `solution` against an analytic radiosity `reference(position, patch)`.
+ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
+                                 const std::function<Rgb(const Vec3&, int)>& reference, int samples_per_patch = 256);
+
+/// Looks up the constant leaf radiosity of a Solution at points of given patches (see above).
+class SolutionSampler {
+ public:
+  SolutionSampler(const Scene& scene, const Solution& solution);
+  /// The leaf of `patch` containing `x` (or the nearest, with *matched = false); -1 if the patch has no leaf.
+  int leaf_at(const Vec3& x, int patch, bool* matched = nullptr) const;
+  Rgb value_at(const Vec3& x, int patch, bool* matched = nullptr) const;
+
+ private:
+  const Scene& scene_;
+  const Solution& solution_;
+  std::vector<std::vector<int>> leaves_of_patch_;
+};
+
+struct EnergyBalance {
+  Rgb emitted_power = Rgb::Zero();   ///< sum over patches of A E
+  Rgb radiosity_power = Rgb::Zero(); ///< sum over leaves of A B (power leaving all surfaces)
+  /// sum over leaves of A (1 - rho)/rho (B - E): the power absorbed, since B = E + rho H gives the
+  /// irradiance H = (B - E)/rho and a surface absorbs (1 - rho) H per unit area. NaN in a channel
+  /// where some leaf has rho = 0 (its irradiance is then not recoverable from B).
+  Rgb absorbed_power = Rgb::Zero();
+  /// |emitted - absorbed| / emitted per channel: 0 for an exact solution of a closed scene (all
+  /// emitted power is eventually absorbed); NaN where nothing is emitted or absorbed is NaN.
+  Rgb closed_scene_residual = Rgb::Zero();
+};
+
+/// Power bookkeeping of a Solution of `scene` (materials by Solution::face_patch).
+EnergyBalance energy_balance(const Scene& scene, const Solution& solution);
+
+}  // namespace hrad

@@ -1,0 +1,184 @@
+#include "hrad/analysis/error_metrics.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+namespace hrad {
+namespace {
+
+Patch make_patch(std::vector<Vec3> v, int material = 0) {
+  Patch p;
+  p.vertices = std::move(v);
+  Vec3 n = Vec3::Zero();
+  for (std::size_t i = 0; i < p.vertices.size(); ++i) n += p.vertices[i].cross(p.vertices[(i + 1) % p.vertices.size()]);
+  p.area = 0.5 * n.norm();
+  p.normal = n.normalized();
+  p.material = material;
+  return p;
+}
+
+Scene unit_square_scene() {
+  Scene s;
+  s.materials.push_back(Material{"grey", Rgb::Constant(0.5), Rgb::Zero()});
+  s.patches.push_back(make_patch({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}));
+  return s;
+}
+
+// The unit square cut at x = cut into two leaves with the given radiosities.
+Solution split_square(double cut, const Rgb& left, const Rgb& right) {
+  Solution s;
+  s.vertices = {Vec3(0, 0, 0), Vec3(cut, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(cut, 1, 0), Vec3(0, 1, 0)};
+  s.vertex_radiosity.assign(6, Rgb::Zero());
+  s.faces = {{0, 1, 4, 5}, {1, 2, 3, 4}};
+  s.face_patch = {0, 0};
+  s.face_radiosity = {left, right};
+  return s;
+}
+
+Solution whole_square(const Rgb& value) {
+  Solution s;
+  s.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
+  s.vertex_radiosity.assign(4, Rgb::Zero());
+  s.faces = {{0, 1, 2, 3}};
+  s.face_patch = {0};
+  s.face_radiosity = {value};
+  return s;
+}
+
+TEST(PatchSamples, WeightsAddUpToTheArea) {
+  Scene s;
+  s.materials.push_back(Material{});
+  s.patches.push_back(make_patch({Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(3, 2, 0), Vec3(0.5, 2, 0)}));  // trapezoid: (4 + 2.5) / 2 * 2 = 6.5
+  s.patches.push_back(make_patch({Vec3(0, 0, 1), Vec3(3, 0, 1), Vec3(0, 0, 5)}));                   // triangle, 6
+  const std::vector<SurfaceSample> samples = patch_samples(s, 100);
+  ASSERT_EQ(samples.size(), 200u);
+  double a0 = 0.0, a1 = 0.0;
+  Vec3 c1 = Vec3::Zero();
+  for (const SurfaceSample& x : samples) {
+    (x.patch == 0 ? a0 : a1) += x.area;
+    if (x.patch == 1) c1 += x.area * x.position;
+  }
+  EXPECT_NEAR(a0, 6.5, 1e-12);
+  EXPECT_NEAR(a1, 6.0, 1e-12);
+  // The triangle's samples are centroids of congruent pieces: their mean is the centroid (1, 0, 7/3).
+  EXPECT_NEAR((c1 / a1 - Vec3(1, 0, 7.0 / 3)).norm(), 0.0, 1e-12);
+}
+
+TEST(ErrorMetrics, SolutionAgainstItselfIsZero) {
+  const Scene scene = unit_square_scene();
+  const Solution s = split_square(0.3, Rgb(1, 2, 3), Rgb(0.5, 0.1, 0.2));
+  const ErrorMetrics m = compare_solutions(scene, s, s);
+  EXPECT_EQ(m.relative_l2, 0.0);
+  EXPECT_EQ(m.relative_linf, 0.0);
+  EXPECT_EQ(m.unmatched, 0u);
+  EXPECT_EQ(m.samples, 256u);
+}
+
+TEST(ErrorMetrics, AreaWeightedAcrossDifferentMeshes) {
+  // Reference: one leaf of value 1. Solution: the quarter x < 1/4 is 1.4, the rest exact.
+  // rel L2 = sqrt(0.25 * 3 * 0.16 / (3 * 1)) = 0.2; rel Linf = sqrt(3) 0.4 / sqrt(3) = 0.4.
+  const Scene scene = unit_square_scene();
+  const ErrorMetrics m =
+      compare_solutions(scene, split_square(0.25, Rgb::Constant(1.4), Rgb::Constant(1.0)), whole_square(Rgb::Ones()));
+  EXPECT_NEAR(m.relative_l2, 0.2, 1e-12);
+  EXPECT_NEAR(m.relative_linf, 0.4, 1e-12);
+  EXPECT_NEAR(m.rms_absolute, std::sqrt(0.25 * 3 * 0.16), 1e-12);
+  ASSERT_EQ(m.patch_relative_l2.size(), 1u);
+  EXPECT_NEAR(m.patch_relative_l2[0], 0.2, 1e-12);
+  ASSERT_EQ(m.face_relative_l2.size(), 2u);
+  EXPECT_NEAR(m.face_relative_l2[0], 0.4, 1e-12);
+  EXPECT_EQ(m.face_relative_l2[1], 0.0);
+  EXPECT_EQ(m.unmatched, 0u);
+}
+
+TEST(ErrorMetrics, ConstantOffsetGivesItsRelativeNorm) {
+  const Scene scene = unit_square_scene();
+  const Rgb ref(0.2, 0.5, 0.7), offset(0.1, -0.2, 0.3);
+  const ErrorMetrics m =
+      compare_solutions(scene, split_square(0.6, ref + offset, ref + offset), whole_square(ref));
+  const double expected = std::sqrt(0.01 + 0.04 + 0.09) / std::sqrt(0.04 + 0.25 + 0.49);
+  EXPECT_NEAR(m.relative_l2, expected, 1e-12);
+  EXPECT_NEAR(m.relative_linf, expected, 1e-12);
+}
+
+TEST(ErrorMetrics, AnalyticReferenceMatchesTheMidpointRule) {
+  // B = 1/2 against Bref(x) = x (all channels): the midpoint rule with h = 1/16 integrates x^2 to
+  // 1/3 - h^2/12 and (x - 1/2)^2 to 1/12 - h^2/12, so rel L2 = sqrt((1/12 - h2/12) / (1/3 - h2/12)),
+  // close to the continuous 1/2.
+  const Scene scene = unit_square_scene();
+  const ErrorMetrics m = compare_to_function(scene, whole_square(Rgb::Constant(0.5)),
+                                             [](const Vec3& x, int) { return Rgb::Constant(x.x()); }, 256);
+  const double h2 = 1.0 / 256;
+  EXPECT_NEAR(m.relative_l2, std::sqrt((1.0 / 12 - h2 / 12) / (1.0 / 3 - h2 / 12)), 1e-12);
+  EXPECT_NEAR(m.relative_l2, 0.5, 2e-3);
+  // Linf: the largest |x - 1/2| at a sample is 15/32, the largest x is 31/32.
+  EXPECT_NEAR(m.relative_linf, 15.0 / 31.0, 1e-12);
+}
+
+TEST(SolutionSampler, FindsLeavesWithTVerticesAndFallsBackOutside) {
+  // A leaf with a T-vertex on its top edge (a pentagon with a collinear vertex) next to two quads.
+  const Scene scene = unit_square_scene();
+  Solution s;
+  s.vertices = {Vec3(0, 0, 0), Vec3(0.5, 0, 0), Vec3(0.5, 0.5, 0), Vec3(0.5, 1, 0), Vec3(0, 1, 0),
+                Vec3(1, 0, 0), Vec3(1, 0.5, 0), Vec3(1, 1, 0)};
+  s.faces = {{0, 1, 2, 3, 4}, {1, 5, 6, 2}, {2, 6, 7, 3}};
+  s.face_patch = {0, 0, 0};
+  s.face_radiosity = {Rgb::Constant(1), Rgb::Constant(2), Rgb::Constant(3)};
+  const SolutionSampler sampler(scene, s);
+  bool matched = false;
+  EXPECT_EQ(sampler.leaf_at(Vec3(0.25, 0.9, 0), 0, &matched), 0);
+  EXPECT_TRUE(matched);
+  EXPECT_EQ(sampler.leaf_at(Vec3(0.75, 0.25, 0), 0), 1);
+  EXPECT_EQ(sampler.leaf_at(Vec3(0.75, 0.75, 0), 0), 2);
+  EXPECT_EQ(sampler.leaf_at(Vec3(1.2, 0.8, 0), 0, &matched), 2);  // outside: the nearest leaf
+  EXPECT_FALSE(matched);
+}
+
+// A closed unit cube seen from inside: six inward-facing patches with one material.
+Scene closed_cube(const Rgb& rho, const Rgb& emission) {
+  Scene s;
+  s.materials.push_back(Material{"m", rho, emission});
+  const Vec3 c[8] = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                     Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
+  const int quads[6][4] = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {3, 2, 6, 7}, {0, 3, 7, 4}, {1, 5, 6, 2}};
+  for (const auto& q : quads) s.patches.push_back(make_patch({c[q[0]], c[q[1]], c[q[2]], c[q[3]]}));
+  return s;
+}
+
+Solution one_leaf_per_patch(const Scene& scene, const Rgb& b) {
+  Solution s;
+  for (std::size_t p = 0; p < scene.patches.size(); ++p) {
+    std::vector<int> face;
+    for (const Vec3& v : scene.patches[p].vertices) {
+      face.push_back(static_cast<int>(s.vertices.size()));
+      s.vertices.push_back(v);
+    }
+    s.faces.push_back(face);
+    s.face_patch.push_back(static_cast<int>(p));
+    s.face_radiosity.push_back(b);
+  }
+  return s;
+}
+
+TEST(EnergyBalance, FurnaceIsBalancedAndAnErrorShows) {
+  // Uniform emission E and reflectance rho everywhere in a closed room: B = E / (1 - rho).
+  const Rgb rho(0.5, 0.8, 0.25), e(1.0, 2.0, 3.0);
+  const Scene scene = closed_cube(rho, e);
+  const EnergyBalance exact = energy_balance(scene, one_leaf_per_patch(scene, e / (1.0 - rho)));
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(exact.emitted_power[c], 6.0 * e[c], 1e-12);
+    EXPECT_NEAR(exact.radiosity_power[c], 6.0 * e[c] / (1.0 - rho[c]), 1e-12);
+    EXPECT_NEAR(exact.closed_scene_residual[c], 0.0, 1e-12);
+  }
+  // B 10% too high in the red channel: absorbed = 6 (1 - 0.5)/0.5 (2.2 - 1) = 7.2 vs emitted 6.
+  const EnergyBalance off = energy_balance(scene, one_leaf_per_patch(scene, Rgb(2.2, 10.0, 4.0)));
+  EXPECT_NEAR(off.absorbed_power[0], 7.2, 1e-12);
+  EXPECT_NEAR(off.closed_scene_residual[0], 0.2, 1e-12);
+  // A black material hides its irradiance: NaN, not a made-up number.
+  const Scene black = closed_cube(Rgb(0.0, 0.5, 0.5), e);
+  EXPECT_TRUE(std::isnan(energy_balance(black, one_leaf_per_patch(black, e)).closed_scene_residual[0]));
+}
+
+}  // namespace
+}  // namespace hrad
