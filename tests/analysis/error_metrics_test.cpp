@@ -1,6 +1,7 @@
 #include "hrad/analysis/error_metrics.h"
 
 #include <cmath>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -133,6 +134,34 @@ TEST(SolutionSampler, FindsLeavesWithTVerticesAndFallsBackOutside) {
   EXPECT_EQ(sampler.leaf_at(Vec3(0.75, 0.75, 0), 0), 2);
   EXPECT_EQ(sampler.leaf_at(Vec3(1.2, 0.8, 0), 0, &matched), 2);  // outside: the nearest leaf
   EXPECT_FALSE(matched);
+}
+
+TEST(SolutionSampler, FindsTheRightLeafAmongMany) {
+  // A 40 x 40 grid of leaves on the unit square: the leaf containing (x, y) is floor(40 y) * 40 + floor(40 x).
+  const Scene scene = unit_square_scene();
+  const int g = 40;
+  Solution s;
+  for (int j = 0; j <= g; ++j)
+    for (int i = 0; i <= g; ++i) s.vertices.emplace_back(double(i) / g, double(j) / g, 0.0);
+  for (int j = 0; j < g; ++j)
+    for (int i = 0; i < g; ++i) {
+      const int a = j * (g + 1) + i;
+      s.faces.push_back({a, a + 1, a + g + 2, a + g + 1});
+      s.face_patch.push_back(0);
+      s.face_radiosity.push_back(Rgb::Constant(j * g + i));
+    }
+  const SolutionSampler sampler(scene, s);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int k = 0; k < 2000; ++k) {
+    const double x = u(rng), y = u(rng);
+    const int expected = static_cast<int>(y * g) * g + static_cast<int>(x * g);
+    const int leaf = sampler.leaf_at(Vec3(x, y, 0), 0);
+    // Points within the tolerance of a shared edge may go to either neighbour.
+    if (leaf != expected) {
+      EXPECT_LT(std::min(std::abs(x * g - std::round(x * g)), std::abs(y * g - std::round(y * g))), 1e-4);
+    }
+  }
 }
 
 // A closed unit cube seen from inside: six inward-facing patches with one material.

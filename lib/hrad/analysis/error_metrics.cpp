@@ -49,40 +49,89 @@ std::vector<SurfaceSample> patch_samples(const Scene& scene, int samples_per_pat
 }
 
 SolutionSampler::SolutionSampler(const Scene& scene, const Solution& solution)
-    : scene_(scene), solution_(solution), leaves_of_patch_(scene.patches.size()) {
+    : scene_(scene), solution_(solution), index_(scene.patches.size()) {
   for (std::size_t f = 0; f < solution.faces.size(); ++f) {
     const int p = solution.face_patch[f];
-    if (p >= 0 && static_cast<std::size_t>(p) < leaves_of_patch_.size()) leaves_of_patch_[p].push_back(static_cast<int>(f));
+    if (p >= 0 && static_cast<std::size_t>(p) < index_.size()) index_[p].leaves.push_back(static_cast<int>(f));
+  }
+  for (std::size_t p = 0; p < index_.size(); ++p) {
+    const Patch& patch = scene.patches[p];
+    PatchIndex& ix = index_[p];
+    ix.origin = patch.vertices[0];
+    ix.u = (patch.vertices[1] - patch.vertices[0]).normalized();
+    ix.v = patch.normal.cross(ix.u);
+    double size = 0.0;
+    for (const Vec3& x : patch.vertices) size = std::max(size, (x - patch.vertices[0]).norm());
+    ix.tolerance = 1e-6 * size;
+    auto plane = [&](const Vec3& x) { return Vec2((x - ix.origin).dot(ix.u), (x - ix.origin).dot(ix.v)); };
+    std::vector<std::pair<Vec2, Vec2>> boxes;
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (int f : ix.leaves) {
+      Vec2 blo = Vec2::Constant(std::numeric_limits<double>::infinity()), bhi = -blo;
+      for (int vid : solution.faces[f]) {
+        const Vec2 q = plane(solution.vertices[vid]);
+        blo = blo.cwiseMin(q);
+        bhi = bhi.cwiseMax(q);
+      }
+      boxes.emplace_back(blo.array() - ix.tolerance, bhi.array() + ix.tolerance);
+      lo = lo.cwiseMin(boxes.back().first);
+      hi = hi.cwiseMax(boxes.back().second);
+    }
+    if (ix.leaves.empty()) continue;
+    ix.nu = ix.nv = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(ix.leaves.size()))));
+    ix.lo = lo;
+    ix.cell = Vec2(std::max((hi - lo).x(), 1e-300) / ix.nu, std::max((hi - lo).y(), 1e-300) / ix.nv);
+    ix.buckets.assign(static_cast<std::size_t>(ix.nu) * ix.nv, {});
+    for (std::size_t k = 0; k < ix.leaves.size(); ++k) {
+      const int u0 = std::clamp(static_cast<int>((boxes[k].first.x() - lo.x()) / ix.cell.x()), 0, ix.nu - 1);
+      const int u1 = std::clamp(static_cast<int>((boxes[k].second.x() - lo.x()) / ix.cell.x()), 0, ix.nu - 1);
+      const int v0 = std::clamp(static_cast<int>((boxes[k].first.y() - lo.y()) / ix.cell.y()), 0, ix.nv - 1);
+      const int v1 = std::clamp(static_cast<int>((boxes[k].second.y() - lo.y()) / ix.cell.y()), 0, ix.nv - 1);
+      for (int j = v0; j <= v1; ++j)
+        for (int i = u0; i <= u1; ++i) ix.buckets[static_cast<std::size_t>(j) * ix.nu + i].push_back(ix.leaves[k]);
+    }
   }
 }
 
 int SolutionSampler::leaf_at(const Vec3& x, int patch, bool* matched) const {
-  const Patch& P = scene_.patches[patch];
-  double size = 0.0;
-  for (const Vec3& v : P.vertices) size = std::max(size, (v - P.vertices[0]).norm());
-  const double tol = 1e-6 * size;
-  int best = -1;
-  double best_inside = -std::numeric_limits<double>::infinity();
-  for (int f : leaves_of_patch_[patch]) {
+  const PatchIndex& ix = index_[patch];
+  const Vec3& normal = scene_.patches[patch].normal;
+  // Smallest signed distance from x to the lines of leaf f's edges (positive inside, CCW);
+  // stops early once below `floor`.
+  auto insideness = [&](int f, double floor) {
     const std::vector<int>& face = solution_.faces[f];
-    double inside = std::numeric_limits<double>::infinity();  // min signed distance to the edges' lines
-    for (std::size_t i = 0; i < face.size() && inside > best_inside; ++i) {
+    double inside = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < face.size() && inside > floor; ++i) {
       const Vec3& a = solution_.vertices[face[i]];
       const Vec3 e = solution_.vertices[face[(i + 1) % face.size()]] - a;
       const double len = e.norm();
       if (len == 0.0) continue;
-      inside = std::min(inside, e.cross(x - a).dot(P.normal) / len);
+      inside = std::min(inside, e.cross(x - a).dot(normal) / len);
     }
-    if (inside >= -tol) {
-      if (matched) *matched = true;
-      return f;
-    }
+    return inside;
+  };
+  if (!ix.buckets.empty()) {
+    const Vec2 q((x - ix.origin).dot(ix.u), (x - ix.origin).dot(ix.v));
+    const int i = static_cast<int>(std::floor((q.x() - ix.lo.x()) / ix.cell.x()));
+    const int j = static_cast<int>(std::floor((q.y() - ix.lo.y()) / ix.cell.y()));
+    if (i >= 0 && j >= 0 && i < ix.nu && j < ix.nv)
+      for (int f : ix.buckets[static_cast<std::size_t>(j) * ix.nu + i])
+        if (insideness(f, -ix.tolerance) >= -ix.tolerance) {
+          if (matched) *matched = true;
+          return f;
+        }
+  }
+  // No leaf contains x: the one whose edges it violates least.
+  int best = -1;
+  double best_inside = -std::numeric_limits<double>::infinity();
+  for (int f : ix.leaves) {
+    const double inside = insideness(f, best_inside);
     if (inside > best_inside) {
       best_inside = inside;
       best = f;
     }
   }
-  if (matched) *matched = false;
+  if (matched) *matched = best >= 0 && best_inside >= -ix.tolerance;
   return best;
 }
 

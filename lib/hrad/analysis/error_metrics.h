@@ -65,9 +65,19 @@ class SolutionSampler {
   Rgb value_at(const Vec3& x, int patch, bool* matched = nullptr) const;
 
  private:
+  /// Per patch: leaves bucketed on a uniform grid over the patch's 2D bounds (in the plane basis
+  /// u, v), so a look-up tests the few leaves whose bounding boxes overlap the point's cell.
+  struct PatchIndex {
+    Vec3 origin, u, v;
+    Vec2 lo, cell;
+    int nu = 1, nv = 1;
+    double tolerance = 0.0;
+    std::vector<std::vector<int>> buckets;
+    std::vector<int> leaves;
+  };
   const Scene& scene_;
   const Solution& solution_;
-  std::vector<std::vector<int>> leaves_of_patch_;
+  std::vector<PatchIndex> index_;
 };
 
 struct EnergyBalance {
