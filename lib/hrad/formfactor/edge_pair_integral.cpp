@@ -1,0 +1,183 @@
+// K_pq = int int ln r ds dt + Lp Lq over two segments, semi-analytically:
+//
+// * Inner integral over t in closed form (Sparrow 1963; Schroeder & Hanrahan 1993, eq. 7):
+//     int_0^Lq ln|w - t b| dt = [ u/2 ln(u^2 + h^2) - u + h atan(u/h) ]_{u0}^{u1},
+//   w = P(s) - Q0, u0 = -w.b, u1 = Lq - w.b, h = |w x b| (distance of P(s) from q's line).
+// * Outer integral of the logarithmic part in closed form as well: u is linear in s and
+//   u^2 + h^2 = |P(s) - Q_k|^2 is quadratic, so int u/2 ln(u^2 + h^2) ds is elementary (log and
+//   atan). What remains, int h(s) [atan(u1/h) - atan(u0/h)] ds = int h(s) theta(s) ds with theta the
+//   angle that segment q subtends at P(s), is the non-elementary (Clausen/dilogarithm) part of
+//   Schroeder & Hanrahan's closed form (their eq. 19-21). It is done here by Gauss-Legendre panels
+//   chosen from the integrand's complex singularities: h theta is analytic except at
+//   P(s) = Q0, P(s) = Q1 (complex s where |P(s) - Q_k|^2 = 0) and at h(s) = 0 (the branch point of
+//   the distance to q's line). For each panel the Bernstein ellipse through the nearest of these
+//   points gives the number of nodes for 1e-16 (Trefethen 2008, Thm 4.5: error ~ rho^(-2n));
+//   panels too close to a singularity are split at it or graded geometrically towards it. Shared
+//   and touching endpoints and crossing edges are exact singular points of this kind: h theta stays
+//   bounded there (it vanishes like s), so the graded panels converge to rounding.
+// * Parallel and collinear segments (b = +-a): everything is elementary (Howell's C-11 derivation):
+//     K = T(Lp + d) - T(d) - T(Lp + d - Lq) + T(d - Lq) - Lp Lq / 2,
+//     T(x) = (x^2 - h^2)/4 ln(x^2 + h^2) + h x atan(x/h),
+//   d the offset of P0 from Q0 along a, h the distance between the lines.
+#include "hrad/formfactor/edge_pair_integral.h"
+
+#include <array>
+#include <cmath>
+#include <complex>
+
+#include "hrad/formfactor/gauss_legendre.h"
+
+namespace hrad::detail {
+namespace {
+
+// x log x style terms vanish at 0; ln(0) must not turn them into NaN.
+inline double log_or_zero(double r2) { return r2 > 0.0 ? std::log(r2) : 0.0; }
+inline double h_atan(double h, double x) { return h > 0.0 ? h * std::atan(x / h) : 0.0; }
+
+// T(x) up to a multiple of x^2 - h^2 that cancels in the four-term sum. With h large against x,
+// ln(x^2 + h^2) = ln h^2 + log1p(x^2/h^2): the ln h^2 part sums to Lp Lq ln(h^2) / 2 exactly, and
+// log1p keeps the digits that ln(h^2 + tiny) would lose. `magnitude` gets the absolute rounding scale.
+double parallel_t(double x, double h, bool split_log, double* magnitude) {
+  const double q = 0.25 * (x * x - h * h);
+  const double lg = split_log ? std::log1p((x / h) * (x / h)) : log_or_zero(x * x + h * h);
+  const double t = q * lg + x * h_atan(h, x);
+  *magnitude += std::abs(t) + (split_log ? 0.0 : std::abs(q));  // ln(y) has absolute error ~eps
+  return t;
+}
+
+EdgePairIntegral parallel_pair(const Vec3& p0, const Vec3& a, double lp, const Vec3& q0, double lq) {
+  const Vec3 w0 = p0 - q0;
+  const double d = w0.dot(a);
+  const double h = w0.cross(a).norm();
+  const double xs[4] = {lp + d, d, lp + d - lq, d - lq};
+  const double reach = std::max(std::max(std::abs(xs[0]), std::abs(xs[1])), std::max(std::abs(xs[2]), std::abs(xs[3])));
+  const bool split_log = h > 0.5 * reach;
+  double magnitude = 0.5 * lp * lq;
+  double value = parallel_t(xs[0], h, split_log, &magnitude) - parallel_t(xs[1], h, split_log, &magnitude) -
+                 parallel_t(xs[2], h, split_log, &magnitude) + parallel_t(xs[3], h, split_log, &magnitude) -
+                 0.5 * lp * lq;
+  if (split_log) {
+    const double lh = 0.5 * lp * lq * std::log(h * h);
+    value += lh;
+    magnitude += std::abs(lh);
+  }
+  return {value, magnitude};
+}
+
+// int over sigma in [s0, s1] of (alpha - c sigma)/2 ln(sigma^2 + rho^2), given
+// r2_0 = s0^2 + rho^2 and r2_1 = s1^2 + rho^2 computed directly as squared distances.
+// Adds the absolute sizes of its terms to *magnitude.
+double log_part(double alpha, double c, double rho, double s0, double s1, double r2_0, double r2_1,
+                double* magnitude) {
+  auto l1 = [&](double s, double r2) { return 0.5 * s * log_or_zero(r2) - s + h_atan(rho, s); };
+  auto l2 = [&](double s, double r2) { return 0.25 * r2 * log_or_zero(r2) - 0.25 * s * s; };
+  const double a1 = l1(s1, r2_1), a0 = l1(s0, r2_0), b1 = l2(s1, r2_1), b0 = l2(s0, r2_0);
+  // Each ln carries an absolute rounding error ~eps: count its coefficients too.
+  *magnitude += std::abs(alpha) * (std::abs(a1) + std::abs(a0) + 0.5 * (std::abs(s1) + std::abs(s0))) +
+                std::abs(c) * (std::abs(b1) + std::abs(b0) + 0.25 * (r2_1 + r2_0));
+  return alpha * (a1 - a0) - c * (b1 - b0);
+}
+
+struct SkewPair {
+  Vec3 w0, a, b;  // w0 = P0 - Q0; unit directions
+  double lq;
+  std::array<std::complex<double>, 3> singular;  // in the s plane (upper half; conjugates implied)
+  int singular_count = 0;
+};
+
+inline double h_theta(const SkewPair& e, double s) {
+  const Vec3 w = e.w0 + s * e.a;
+  const double h = w.cross(e.b).norm();
+  if (h == 0.0) return 0.0;
+  return h * std::atan2(h * e.lq, w.dot(w - e.lq * e.b));
+}
+
+double bernstein_rho(std::complex<double> z, double lo, double hi) {
+  const std::complex<double> xi = (2.0 * z - (lo + hi)) / (hi - lo);
+  const std::complex<double> root = std::sqrt(xi - 1.0) * std::sqrt(xi + 1.0);
+  return std::max(std::abs(xi + root), std::abs(xi - root));
+}
+
+constexpr double kLogTarget = 18.5;  // ln(1e16) / 2: nodes n with rho^(-2n) <= 1e-16
+constexpr int kMinOrder = 3;
+constexpr int kMaxOrder = 20;
+
+double gauss(const SkewPair& e, double lo, double hi, int n) {
+  const GaussRule g = gauss_legendre(n);
+  const double half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) sum += g.weights[i] * h_theta(e, mid + half * g.nodes[i]);
+  return sum * half;
+}
+
+double panels(const SkewPair& e, double lo, double hi, double min_length) {
+  double rho = INFINITY;
+  int worst = 0;
+  for (int k = 0; k < e.singular_count; ++k) {
+    const double r = bernstein_rho(e.singular[k], lo, hi);
+    if (r < rho) rho = r, worst = k;
+  }
+  const double len = hi - lo;
+  const double need = rho > 1.0 ? kLogTarget / std::log(rho) : INFINITY;
+  if (need <= kMaxOrder || len <= min_length)
+    return gauss(e, lo, hi, std::clamp(static_cast<int>(std::ceil(need)), kMinOrder, kMaxOrder));
+  // Split at the singularity's abscissa when it lies well inside, else grade towards the end.
+  const double x = e.singular[worst].real();
+  double split;
+  if (x > lo + 0.05 * len && x < hi - 0.05 * len) {
+    split = x;
+  } else {
+    split = x <= 0.5 * (lo + hi) ? lo + 0.3 * len : hi - 0.3 * len;
+  }
+  return panels(e, lo, split, min_length) + panels(e, split, hi, min_length);
+}
+
+EdgePairIntegral skew_pair(const Vec3& p0, const Vec3& a, double lp, const Vec3& q0, const Vec3& b, double lq,
+                 const Vec3& axb) {
+  SkewPair e;
+  e.w0 = p0 - q0;
+  e.a = a;
+  e.b = b;
+  e.lq = lq;
+  const double c = a.dot(b);
+  // Logarithmic part, both ends of q: t_k = 0 (sign -1) and t_k = Lq (sign +1).
+  double sum = 0.0, magnitude = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    const double tk = k == 0 ? 0.0 : lq;
+    const Vec3 v = e.w0 - tk * b;  // P0 - Q_k
+    const double beta = v.dot(a);
+    const double rho = v.cross(a).norm();
+    const double alpha = -v.dot(b - c * a);
+    const Vec3 v1 = v + lp * a;  // P1 - Q_k
+    const double part = log_part(alpha, c, rho, beta, lp + beta, v.squaredNorm(), v1.squaredNorm(), &magnitude);
+    sum += k == 0 ? -part : part;
+    e.singular[e.singular_count++] = {-beta, rho};  // P(s) = Q_k
+  }
+  // Branch point of h(s) = |w0 x b + s (a x b)|.
+  const double axb2 = axb.squaredNorm();
+  if (axb2 > 0.0) {
+    const Vec3 m = e.w0.cross(b);
+    const double s_star = -m.dot(axb) / axb2;
+    const double im = (m + s_star * axb).norm() / std::sqrt(axb2);
+    if (std::isfinite(s_star) && std::isfinite(im)) e.singular[e.singular_count++] = {s_star, im};
+  }
+  const double remainder = panels(e, 0.0, lp, 1e-9 * lp);
+  return {sum + remainder, magnitude + std::abs(remainder)};
+}
+
+}  // namespace
+
+EdgePairIntegral edge_pair_log_integral(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+  const Vec3 dp = p1 - p0, dq = q1 - q0;
+  const double lp = dp.norm(), lq = dq.norm();
+  if (lp == 0.0 || lq == 0.0) return {};
+  const Vec3 a = dp / lp, b = dq / lq;
+  const Vec3 axb = a.cross(b);
+  // Parallel within rounding of the unit vectors: a tilt of 1e-15 changes K by ~1e-15 Lp Lq.
+  if (axb.norm() <= 1e-15) {
+    return a.dot(b) > 0.0 ? parallel_pair(p0, a, lp, q0, lq) : parallel_pair(p0, a, lp, q1, lq);
+  }
+  return skew_pair(p0, a, lp, q0, b, lq, axb);
+}
+
+}  // namespace hrad::detail
