@@ -13,6 +13,12 @@
 //                          the area-weighted element luminance maps to 0.8)
 //   --wireframe            flat-shaded elements with their edges (the element mesh)
 //   --both-sides           draw back faces too (default: polygons facing away are skipped)
+//   --reference REF.ply --scene SCENE.obj
+//                          false-colour image of each element's relative L2 error against the
+//                          reference solution (analysis/error_metrics.h: samples per patch of the
+//                          scene), with a colour bar; prints the overall relative L2 and Linf errors
+//   --error-range LO,HI    colour-bar range for the error image (default 0 to the largest element error)
+//   --log                  logarithmic colour scale for the error image
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -21,6 +27,8 @@
 
 #include "commands.h"
 #include "hrad/core/error.h"
+#include "hrad/analysis/error_metrics.h"
+#include "hrad/io/obj_reader.h"
 #include "hrad/io/png_writer.h"
 #include "hrad/io/solution_ply.h"
 #include "hrad/render/render.h"
@@ -62,6 +70,23 @@ Camera parse_camera(const std::string& text, int width, int height) {
   return c;
 }
 
+std::pair<double, double> parse_range(const std::string& text) {
+  const std::string usage = "--error-range: expected LO,HI with 0 <= LO < HI";
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos) throw Error(fmt::format("{}, got '{}'", usage, text));
+  double lo = 0.0, hi = 0.0;
+  try {
+    std::size_t used_lo = 0, used_hi = 0;
+    lo = std::stod(text.substr(0, comma), &used_lo);
+    hi = std::stod(text.substr(comma + 1), &used_hi);
+    if (used_lo != comma || used_hi != text.size() - comma - 1) throw std::invalid_argument("trailing");
+  } catch (const std::exception&) {
+    throw Error(fmt::format("{}, got '{}'", usage, text));
+  }
+  if (!(lo >= 0.0 && hi > lo && std::isfinite(hi))) throw Error(fmt::format("{}, got '{}'", usage, text));
+  return {lo, hi};
+}
+
 }  // namespace
 
 void add_render_command(CLI::App& app) {
@@ -71,6 +96,8 @@ void add_render_command(CLI::App& app) {
     int width = 512, height = 512;
     double exposure = 0.0;
     bool wireframe = false, both_sides = false;
+    std::string reference, scene, error_range;
+    bool log_scale = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("SOLUTION", args->solution, "Solution file (.ply) written by hrad solve")->required();
@@ -82,6 +109,10 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--exposure", args->exposure, "Radiosity scale before the sRGB curve (default: automatic)");
   cmd->add_flag("--wireframe", args->wireframe, "Draw the element mesh over flat-shaded elements");
   cmd->add_flag("--both-sides", args->both_sides, "Also draw polygons whose front faces away from the camera");
+  cmd->add_option("--reference", args->reference, "Reference solution (.ply): draw the relative error instead");
+  cmd->add_option("--scene", args->scene, "Scene (.obj) of both solutions; required with --reference");
+  cmd->add_option("--error-range", args->error_range, "LO,HI: colour-bar range of the error image");
+  cmd->add_flag("--log", args->log_scale, "Logarithmic colour scale for the error image");
   cmd->callback([args, cmd] {
     if (args->width < 1 || args->width > 16384)
       throw Error(fmt::format("--width: {} is not in [1, 16384]", args->width));
@@ -95,7 +126,40 @@ void add_render_command(CLI::App& app) {
                                           : parse_camera(args->camera, args->width, args->height);
     options.exposure = cmd->count("--exposure") ? args->exposure : auto_exposure(solution);
     options.cull_back_faces = !args->both_sides;
-    const Image image = args->wireframe ? render_wireframe(solution, options) : render_solution(solution, options);
+    if (!args->reference.empty() && args->scene.empty()) throw Error("--scene: required with --reference");
+    if (args->reference.empty() && (!args->scene.empty() || !args->error_range.empty() || args->log_scale))
+      throw Error("--reference: --scene, --error-range and --log only apply to an error image");
+    Image image;
+    if (!args->reference.empty()) {
+      const Scene scene = read_obj_scene(args->scene);
+      const Solution reference = read_solution_ply(args->reference);
+      for (int p : solution.face_patch)
+        if (static_cast<std::size_t>(p) >= scene.patches.size())
+          throw Error(fmt::format("{}: patch id {} but {} has {} patches", args->solution, p, args->scene,
+                                  scene.patches.size()));
+      for (int p : reference.face_patch)
+        if (static_cast<std::size_t>(p) >= scene.patches.size())
+          throw Error(fmt::format("{}: patch id {} but {} has {} patches", args->reference, p, args->scene,
+                                  scene.patches.size()));
+      const ErrorMetrics metrics = compare_solutions(scene, solution, reference);
+      FalseColourOptions colours;
+      colours.log_scale = args->log_scale;
+      if (!args->error_range.empty()) {
+        std::tie(colours.lo, colours.hi) = parse_range(args->error_range);
+      } else {
+        colours.hi = 0.0;
+        for (double e : metrics.face_relative_l2)
+          if (std::isfinite(e)) colours.hi = std::max(colours.hi, e);
+        colours.lo = args->log_scale ? colours.hi * 1e-3 : 0.0;
+        if (colours.hi == 0.0) colours.hi = 1.0;
+      }
+      if (colours.log_scale && !(colours.lo > 0.0)) throw Error("--error-range: LO must be positive with --log");
+      image = render_false_colour(solution, metrics.face_relative_l2, options, colours);
+      std::cout << fmt::format("relative L2 error {:.6g}, relative Linf error {:.6g} ({} samples); colour range {:.3g} to {:.3g}\n",
+                               metrics.relative_l2, metrics.relative_linf, metrics.samples, colours.lo, colours.hi);
+    } else {
+      image = args->wireframe ? render_wireframe(solution, options) : render_solution(solution, options);
+    }
     write_png(args->out, image);
     std::cout << fmt::format("{}: {}x{} image of {} elements, exposure {:.6g}\n", args->out, image.width, image.height,
                              solution.faces.size(), options.exposure);
