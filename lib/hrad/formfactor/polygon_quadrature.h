@@ -1,5 +1,8 @@
-// Gauss points on a planar polygon: ear-clipping triangulation, then the collapsed (Duffy) product
-// Gauss-Legendre rule on each triangle (Stroud 1971, sec. 2.7; Duffy 1982).
+// Gauss points on a planar polygon: triangulation, each triangle cut into three quadrilaterals at its
+// centroid and edge midpoints, product Gauss-Legendre on each bilinear quadrilateral. Unlike the
+// collapsed (Duffy) rule this keeps the total polynomial degree: a polynomial of degree k in x is of
+// degree <= k in each of u and v, so `order` points integrate total degree 2 order - 1 exactly
+// (Stroud 1971, sec. 1.4 and 2.7).
 #pragma once
 
 #include <span>
@@ -14,8 +17,7 @@ struct WeightedPoint {
   double weight;  // area element: the weights of one polygon sum to its area
 };
 
-/// Appends order^2 points per triangle of `polygon` to `out`; integrates polynomials of degree
-/// 2*order-2 over each triangle exactly.
+/// Appends 3 order^2 points per triangle of `polygon` to `out`.
 void polygon_quadrature(std::span<const Vec3> polygon, const Vec3& unit_normal, int order,
                         std::vector<WeightedPoint>& out);
 

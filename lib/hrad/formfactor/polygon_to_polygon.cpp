@@ -10,7 +10,8 @@
 //
 // The contour sum cancels when the factor is small against the edge terms: pairs far apart
 // (~1e-12 relative at distance/size 10, ~1e-8 at 1000), pairs of very different size, long slivers.
-// When its bound says it is not accurate to kAcceptTolerance:
+// The contour sum is tried first (it is the fast path); when its bound says it is not accurate to
+// kAcceptTolerance:
 // * a pair far apart relative to its size is integrated directly by product Gauss quadrature of the
 //   area-area kernel (far_field_form_factor.cpp), which does not cancel at all;
 // * otherwise both polygons are triangulated and the larger triangle of a piece pair is bisected
@@ -30,6 +31,7 @@
 #include "hrad/formfactor/far_field_form_factor.h"
 #include "hrad/formfactor/polygon_distance.h"
 #include "hrad/formfactor/prepared_pair.h"
+#include "hrad/formfactor/triangle_piece.h"
 #include "hrad/geometry/polygon.h"
 
 namespace hrad {
@@ -40,47 +42,12 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // over aspect ratios 1e-4..1e4 and distances 1e-3..1e3: actual/bound between 0.003 and 0.3).
 constexpr double kAcceptTolerance = 1e-11;
 constexpr double kPieceTolerance = 1e-12;
-constexpr std::size_t kMaxPieces = 4000;  // bounds the worst case to a few ms
+constexpr std::size_t kMaxPieces = 1500;  // bounds the worst case (~0.1 s)
 // Touching pieces are split only when one is this much larger than the other.
 constexpr double kSizeRatio = 4.0;
 
-struct Triangle {
-  std::array<Vec3, 3> v;
-  Vec3 centre;
-  double radius;
-  double area;
-};
-
-Triangle make_triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  Triangle t{{a, b, c}, (a + b + c) / 3.0, 0.0, 0.5 * (b - a).cross(c - a).norm()};
-  for (const Vec3& v : t.v) t.radius = std::max(t.radius, (v - t.centre).norm());
-  return t;
-}
-
-// Longest-edge bisection, keeping the counter-clockwise order.
-std::array<Triangle, 2> bisect(const Triangle& t) {
-  int k = 0;
-  double longest = -1.0;
-  for (int i = 0; i < 3; ++i) {
-    const double l = (t.v[(i + 1) % 3] - t.v[i]).squaredNorm();
-    if (l > longest) longest = l, k = i;
-  }
-  const Vec3& a = t.v[k];
-  const Vec3& b = t.v[(k + 1) % 3];
-  const Vec3& c = t.v[(k + 2) % 3];
-  const Vec3 m = 0.5 * (a + b);
-  return {make_triangle(a, m, c), make_triangle(m, b, c)};
-}
-
-std::vector<Triangle> triangles_of(std::span<const Vec3> p, const Vec3& normal) {
-  std::vector<Triangle> out;
-  if (is_convex(p, normal)) {
-    for (std::size_t i = 1; i + 1 < p.size(); ++i) out.push_back(make_triangle(p[0], p[i], p[i + 1]));
-  } else {
-    for (const auto& t : triangulate(p, normal)) out.push_back(make_triangle(p[t[0]], p[t[1]], p[t[2]]));
-  }
-  return out;
-}
+using Triangle = detail::TrianglePiece;
+using detail::bisect;
 
 // Dual bisection of piece pairs (see the file comment).
 struct Refinement {
@@ -117,7 +84,7 @@ struct Refinement {
 
   double total(std::span<const Vec3> from, std::span<const Vec3> to) {
     double sum = 0.0;
-    const std::vector<Triangle> tf = triangles_of(from, from_normal), tt = triangles_of(to, to_normal);
+    const std::vector<Triangle> tf = detail::triangle_pieces(from, from_normal), tt = detail::triangle_pieces(to, to_normal);
     for (const Triangle& a : tf)
       for (const Triangle& b : tt) sum += refine(a, b);
     return sum;
@@ -142,16 +109,15 @@ PairFormFactor polygon_to_polygon(std::span<const Vec3> from, std::span<const Ve
   double rf, rt;
   centre_and_radius(pair.from, &cf, &rf);
   centre_and_radius(pair.to, &ct, &rt);
-  double area_factor = 0.0;
-  if (detail::far_field_order((cf - ct).norm(), rf, rt) > 0) {
-    area_factor = refinement.total(pair.from, pair.to);
-  } else {
-    const detail::ContourSum sum = detail::contour_area_factor(pair.from, pair.to);
-    area_factor = sum.area_factor;
-    const bool accurate = kEps * sum.magnitude <= kAcceptTolerance * sum.area_factor;
-    const bool touching_alike = std::max(rf, rt) < kSizeRatio * std::min(rf, rt) &&
-                                detail::polygon_distance(pair.from, pair.from_normal, pair.to, pair.to_normal) == 0.0;
-    if (!accurate && !touching_alike) {
+  const detail::ContourSum sum = detail::contour_area_factor(pair.from, pair.to);
+  double area_factor = sum.area_factor;
+  const bool accurate = kEps * sum.magnitude <= kAcceptTolerance * sum.area_factor;
+  if (!accurate) {
+    const bool far = detail::far_field_order((cf - ct).norm(), rf, rt) > 0;
+    const bool touching_alike =
+        !far && std::max(rf, rt) < kSizeRatio * std::min(rf, rt) &&
+        detail::polygon_distance(pair.from, pair.from_normal, pair.to, pair.to_normal) == 0.0;
+    if (!touching_alike) {
       const double refined = refinement.total(pair.from, pair.to);
       // Out of budget (pieces near each other that stay slivers): the contour sum is the better value.
       if (refinement.pieces < kMaxPieces) area_factor = refined;
