@@ -17,8 +17,12 @@
 //                          false-colour image of each element's relative L2 error against the
 //                          reference solution (analysis/error_metrics.h: samples per patch of the
 //                          scene), with a colour bar; prints the overall relative L2 and Linf errors
-//   --error-range LO,HI    colour-bar range for the error image (default 0 to the largest element error)
+//   --error-range LO,HI    colour-bar range for the error image (default 0 to the area-weighted 95th
+//                          percentile of the element errors; larger errors are drawn red)
 //   --log                  logarithmic colour scale for the error image
+//   --include-emitters     measure emitting patches too (default: left out, drawn grey, since
+//                          their given emission dominates the norms)
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -31,6 +35,7 @@
 #include "hrad/io/obj_reader.h"
 #include "hrad/io/png_writer.h"
 #include "hrad/io/solution_ply.h"
+#include "hrad/render/face_geometry.h"
 #include "hrad/render/render.h"
 #include "hrad/render/tone_map.h"
 
@@ -97,7 +102,7 @@ void add_render_command(CLI::App& app) {
     double exposure = 0.0;
     bool wireframe = false, both_sides = false;
     std::string reference, scene, error_range;
-    bool log_scale = false;
+    bool log_scale = false, include_emitters = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("SOLUTION", args->solution, "Solution file (.ply) written by hrad solve")->required();
@@ -113,6 +118,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--scene", args->scene, "Scene (.obj) of both solutions; required with --reference");
   cmd->add_option("--error-range", args->error_range, "LO,HI: colour-bar range of the error image");
   cmd->add_flag("--log", args->log_scale, "Logarithmic colour scale for the error image");
+  cmd->add_flag("--include-emitters", args->include_emitters, "Measure the error on emitting patches too");
   cmd->callback([args, cmd] {
     if (args->width < 1 || args->width > 16384)
       throw Error(fmt::format("--width: {} is not in [1, 16384]", args->width));
@@ -127,8 +133,9 @@ void add_render_command(CLI::App& app) {
     options.exposure = cmd->count("--exposure") ? args->exposure : auto_exposure(solution);
     options.cull_back_faces = !args->both_sides;
     if (!args->reference.empty() && args->scene.empty()) throw Error("--scene: required with --reference");
-    if (args->reference.empty() && (!args->scene.empty() || !args->error_range.empty() || args->log_scale))
-      throw Error("--reference: --scene, --error-range and --log only apply to an error image");
+    if (args->reference.empty() &&
+        (!args->scene.empty() || !args->error_range.empty() || args->log_scale || args->include_emitters))
+      throw Error("--reference: --scene, --error-range, --log and --include-emitters only apply to an error image");
     Image image;
     if (!args->reference.empty()) {
       const Scene scene = read_obj_scene(args->scene);
@@ -141,22 +148,40 @@ void add_render_command(CLI::App& app) {
         if (static_cast<std::size_t>(p) >= scene.patches.size())
           throw Error(fmt::format("{}: patch id {} but {} has {} patches", args->reference, p, args->scene,
                                   scene.patches.size()));
-      const ErrorMetrics metrics = compare_solutions(scene, solution, reference);
+      const ErrorMetrics metrics = compare_solutions(scene, solution, reference, 256,
+                                                     args->include_emitters ? Emitters::include : Emitters::exclude);
       FalseColourOptions colours;
       colours.log_scale = args->log_scale;
       if (!args->error_range.empty()) {
         std::tie(colours.lo, colours.hi) = parse_range(args->error_range);
       } else {
+        // The 95th percentile by area: a few elements where the reference is nearly black (under
+        // the Cornell blocks, say) have huge relative errors and would wash out the rest.
+        std::vector<std::pair<double, double>> by_error;  // (error, area)
+        double total = 0.0;
+        for (std::size_t f = 0; f < solution.faces.size(); ++f) {
+          const double e = metrics.face_relative_l2[f];
+          if (!std::isfinite(e)) continue;
+          by_error.emplace_back(e, face_area(solution, f));
+          total += by_error.back().second;
+        }
+        std::sort(by_error.begin(), by_error.end());
+        double acc = 0.0;
         colours.hi = 0.0;
-        for (double e : metrics.face_relative_l2)
-          if (std::isfinite(e)) colours.hi = std::max(colours.hi, e);
+        for (const auto& [e, a] : by_error) {
+          acc += a;
+          colours.hi = e;
+          if (acc >= 0.95 * total) break;
+        }
         colours.lo = args->log_scale ? colours.hi * 1e-3 : 0.0;
         if (colours.hi == 0.0) colours.hi = 1.0;
       }
       if (colours.log_scale && !(colours.lo > 0.0)) throw Error("--error-range: LO must be positive with --log");
       image = render_false_colour(solution, metrics.face_relative_l2, options, colours);
-      std::cout << fmt::format("relative L2 error {:.6g}, relative Linf error {:.6g} ({} samples); colour range {:.3g} to {:.3g}\n",
-                               metrics.relative_l2, metrics.relative_linf, metrics.samples, colours.lo, colours.hi);
+      std::cout << fmt::format(
+          "relative L2 error {:.6g}, relative Linf error {:.6g} ({} samples{}); colour range {:.3g} to {:.3g}\n",
+          metrics.relative_l2, metrics.relative_linf, metrics.samples,
+          args->include_emitters ? "" : ", emitters left out", colours.lo, colours.hi);
     } else {
       image = args->wireframe ? render_wireframe(solution, options) : render_solution(solution, options);
     }

@@ -103,6 +103,35 @@ TEST(ErrorMetrics, ConstantOffsetGivesItsRelativeNorm) {
   EXPECT_NEAR(m.relative_linf, expected, 1e-12);
 }
 
+TEST(ErrorMetrics, EmittersCanBeLeftOut) {
+  // Patch 0 (emitting) is 10% off everywhere, patch 1 (plain) exact: only the former counts.
+  Scene scene = unit_square_scene();
+  scene.materials.push_back(Material{"light", Rgb::Constant(0.5), Rgb::Constant(5.0)});
+  scene.patches[0].material = 1;
+  Patch second = scene.patches[0];
+  for (Vec3& v : second.vertices) v.z() = 1.0;
+  second.material = 0;
+  scene.patches.push_back(second);
+  Solution ref = whole_square(Rgb::Constant(5.0)), sol = whole_square(Rgb::Constant(5.5));
+  for (int k = 0; k < 4; ++k) {
+    ref.vertices.push_back(ref.vertices[k] + Vec3(0, 0, 1));
+    sol.vertices.push_back(sol.vertices[k] + Vec3(0, 0, 1));
+  }
+  for (Solution* s : {&ref, &sol}) {
+    s->faces.push_back({4, 5, 6, 7});
+    s->face_patch.push_back(1);
+    s->face_radiosity.push_back(Rgb::Constant(1.0));
+  }
+  // Included: sqrt(0.25 / (25 + 1)) over equal areas.
+  EXPECT_NEAR(compare_solutions(scene, sol, ref).relative_l2, std::sqrt(0.25 / 26.0), 1e-12);
+  const ErrorMetrics m = compare_solutions(scene, sol, ref, 64, Emitters::exclude);
+  EXPECT_EQ(m.relative_l2, 0.0);
+  EXPECT_EQ(m.samples, 64u);
+  EXPECT_TRUE(std::isnan(m.patch_relative_l2[0]));
+  EXPECT_TRUE(std::isnan(m.face_relative_l2[0]));
+  EXPECT_EQ(m.face_relative_l2[1], 0.0);
+}
+
 TEST(ErrorMetrics, AnalyticReferenceMatchesTheMidpointRule) {
   // B = 1/2 against Bref(x) = x (all channels): the midpoint rule with h = 1/16 integrates x^2 to
   // 1/3 - h^2/12 and (x - 1/2)^2 to 1/12 - h^2/12, so rel L2 = sqrt((1/12 - h2/12) / (1/3 - h2/12)),

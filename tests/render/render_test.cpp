@@ -187,6 +187,8 @@ TEST(Render, FalseColourMapsValuesAndAddsLegend) {
   EXPECT_EQ(error_colormap(0.5), (Rgb8{221, 221, 221}));
   EXPECT_EQ(error_colormap(1.0), (Rgb8{180, 4, 38}));
   EXPECT_EQ(error_colormap(0.25), (Rgb8{140, 149, 207}));  // halfway blue -> white
+  EXPECT_EQ(error_colormap(INFINITY), (Rgb8{180, 4, 38}));
+  EXPECT_EQ(error_colormap(NAN), (Rgb8{128, 128, 128}));
   RenderOptions o;
   o.camera = test_camera();
   FalseColourOptions fc;

@@ -141,8 +141,13 @@ Rgb SolutionSampler::value_at(const Vec3& x, int patch, bool* matched) const {
 }
 
 ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
-                                 const std::function<Rgb(const Vec3&, int)>& reference, int samples_per_patch) {
-  const std::vector<SurfaceSample> samples = patch_samples(scene, samples_per_patch);
+                                 const std::function<Rgb(const Vec3&, int)>& reference, int samples_per_patch,
+                                 Emitters emitters) {
+  auto skipped = [&](int patch) {
+    return emitters == Emitters::exclude && scene.material_of(scene.patches[patch]).is_emitter();
+  };
+  std::vector<SurfaceSample> samples = patch_samples(scene, samples_per_patch);
+  std::erase_if(samples, [&](const SurfaceSample& s) { return skipped(s.patch); });
   const SolutionSampler sampler(scene, solution);
   ErrorMetrics m;
   m.samples = samples.size();
@@ -174,9 +179,15 @@ ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
   m.relative_linf = ratio(max_err, max_ref);
   m.rms_absolute = area > 0.0 ? std::sqrt(err / area) : 0.0;
   m.patch_relative_l2.resize(scene.patches.size());
-  for (std::size_t p = 0; p < scene.patches.size(); ++p) m.patch_relative_l2[p] = std::sqrt(ratio(patch_err[p], patch_ref[p]));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t p = 0; p < scene.patches.size(); ++p)
+    m.patch_relative_l2[p] = skipped(static_cast<int>(p)) ? nan : std::sqrt(ratio(patch_err[p], patch_ref[p]));
   m.face_relative_l2.resize(solution.faces.size());
   for (std::size_t f = 0; f < solution.faces.size(); ++f) {
+    if (skipped(solution.face_patch[f])) {
+      m.face_relative_l2[f] = nan;
+      continue;
+    }
     if (!face_hit[f]) {  // a leaf smaller than the sample spacing: compare at its centroid
       const Rgb r = reference(face_centroid(solution, f), solution.face_patch[f]);
       face_err[f] = (solution.face_radiosity[f] - r).matrix().squaredNorm();
@@ -188,7 +199,7 @@ ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
 }
 
 ErrorMetrics compare_solutions(const Scene& scene, const Solution& solution, const Solution& reference,
-                               int samples_per_patch) {
+                               int samples_per_patch, Emitters emitters) {
   const SolutionSampler ref_sampler(scene, reference);
   std::size_t ref_unmatched = 0;
   ErrorMetrics m = compare_to_function(
@@ -199,7 +210,7 @@ ErrorMetrics compare_solutions(const Scene& scene, const Solution& solution, con
         if (!matched) ++ref_unmatched;
         return r;
       },
-      samples_per_patch);
+      samples_per_patch, emitters);
   m.unmatched += ref_unmatched;
   return m;
 }

@@ -19,6 +19,9 @@
 //   patch_relative_l2[p], face_relative_l2[f]: relative_l2 restricted to the samples of patch p,
 //     or to the samples falling in leaf f of the evaluated solution (a leaf that no sample falls
 //     in is compared at its centroid). 0/0 is 0; x/0 with x > 0 is +infinity.
+// With Emitters::exclude the samples of emitting patches are left out of every sum (their
+// radiosity is mostly the given emission, which would dominate the norms); their
+// patch_relative_l2 and face_relative_l2 are NaN ("not measured").
 #pragma once
 
 #include <functional>
@@ -38,6 +41,8 @@ struct SurfaceSample {
 /// The fixed samples described above, patch by patch in Scene order.
 std::vector<SurfaceSample> patch_samples(const Scene& scene, int samples_per_patch);
 
+enum class Emitters { include, exclude };
+
 struct ErrorMetrics {
   double relative_l2 = 0.0;
   double relative_linf = 0.0;
@@ -50,11 +55,12 @@ struct ErrorMetrics {
 
 /// Error of `solution` against `reference` (both on `scene`'s patches, any meshes).
 ErrorMetrics compare_solutions(const Scene& scene, const Solution& solution, const Solution& reference,
-                               int samples_per_patch = 256);
+                               int samples_per_patch = 256, Emitters emitters = Emitters::include);
 
 /// Error of `solution` against an analytic radiosity `reference(position, patch)`.
 ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
-                                 const std::function<Rgb(const Vec3&, int)>& reference, int samples_per_patch = 256);
+                                 const std::function<Rgb(const Vec3&, int)>& reference, int samples_per_patch = 256,
+                                 Emitters emitters = Emitters::include);
 
 /// Looks up the constant leaf radiosity of a Solution at points of given patches (see above).
 class SolutionSampler {

@@ -20,10 +20,14 @@ struct FileCloser {
 };
 using File = std::unique_ptr<std::FILE, FileCloser>;
 
+// libpng's default handlers print to stderr; the caller reports errors itself (naming the file).
+void silent_error(png_structp png, png_const_charp) { png_longjmp(png, 1); }
+void silent_warning(png_structp, png_const_charp) {}
+
 // libpng reports errors by longjmp; these functions hold no C++ objects with destructors between
 // setjmp and the libpng calls, so the jump is safe. They return false on error.
 bool write_rows(std::FILE* file, const Image& image, std::vector<png_bytep>& rows) {
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, silent_error, silent_warning);
   if (!png) return false;
   png_infop info = png_create_info_struct(png);
   if (!info || setjmp(png_jmpbuf(png))) {
@@ -41,7 +45,7 @@ bool write_rows(std::FILE* file, const Image& image, std::vector<png_bytep>& row
 }
 
 bool read_rows(std::FILE* file, Image* image, std::vector<png_byte>* buffer, std::vector<png_bytep>* rows) {
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, silent_error, silent_warning);
   if (!png) return false;
   png_infop info = png_create_info_struct(png);
   if (!info || setjmp(png_jmpbuf(png))) {

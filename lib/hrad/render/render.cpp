@@ -93,7 +93,8 @@ Image render_wireframe(const Solution& s, const RenderOptions& o, const Wirefram
 }
 
 Rgb8 error_colormap(double t) {
-  t = std::isfinite(t) ? std::clamp(t, 0.0, 1.0) : 1.0;
+  if (std::isnan(t)) return {128, 128, 128};
+  t = std::clamp(t, 0.0, 1.0);
   const Rgb blue(59, 76, 192), white(221, 221, 221), red(180, 4, 38);
   const Rgb c = t < 0.5 ? Rgb(blue + 2.0 * t * (white - blue)) : Rgb(white + (2.0 * t - 1.0) * (red - white));
   return {static_cast<std::uint8_t>(std::lround(c[0])), static_cast<std::uint8_t>(std::lround(c[1])),

@@ -39,7 +39,8 @@ struct WireframeOptions {
 /// Each element flat-shaded with its constant Solution::face_radiosity, its edges drawn on top.
 Image render_wireframe(const Solution& solution, const RenderOptions& options, const WireframeOptions& wireframe = {});
 
-/// Blue (t = 0) through white (t = 0.5) to red (t = 1), linear between the three in sRGB; t clamped.
+/// Blue (t = 0) through white (t = 0.5) to red (t = 1), linear between the three in sRGB; t clamped
+/// (+infinity is red); NaN ("not measured") is mid grey.
 Rgb8 error_colormap(double t);
 
 struct FalseColourOptions {
