@@ -62,6 +62,7 @@ TEST(Camera, ProjectsKnownPointsOfTheCornellCamera) {
 TEST(Camera, FittedCameraSeesTheWholeBox) {
   const Vec3 lo(-3, 1, 2), hi(7, 4, 20);
   const Camera c = fit_camera(lo, hi, 320, 200);
+  double widest = 0.0;  // largest |ndc| over the corners: 0.95 by construction
   for (int i = 0; i < 8; ++i) {
     const Vec3 corner((i & 1) ? hi.x() : lo.x(), (i & 2) ? hi.y() : lo.y(), (i & 4) ? hi.z() : lo.z());
     const auto p = project(c, corner);
@@ -70,7 +71,9 @@ TEST(Camera, FittedCameraSeesTheWholeBox) {
     EXPECT_LE(p->x(), 320.0);
     EXPECT_GE(p->y(), 0.0);
     EXPECT_LE(p->y(), 200.0);
+    widest = std::max({widest, std::abs(p->x() / 160.0 - 1.0), std::abs(p->y() / 100.0 - 1.0)});
   }
+  EXPECT_NEAR(widest, 0.95, 1e-9);
 }
 
 TEST(Render, ConstantSquareCoversExactlyItsPixels) {

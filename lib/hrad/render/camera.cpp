@@ -53,18 +53,27 @@ Camera cornell_box_camera(int width, int height) {
 Camera fit_camera(const Vec3& lo, const Vec3& hi, int width, int height, double vfov_deg) {
   const Vec3 centre = 0.5 * (lo + hi);
   const double radius = std::max(0.5 * (hi - lo).norm(), 1e-12);
-  const double aspect = static_cast<double>(width) / height;
-  const double half = 0.5 * vfov_deg * std::numbers::pi / 180.0;
-  // The narrower of the two half-angles must hold the bounding sphere: distance = r / sin(angle).
-  const double half_narrow = aspect >= 1.0 ? half : std::atan(std::tan(half) * aspect);
-  const double distance = radius / std::sin(half_narrow);
   Camera c;
   c.target = centre;
-  c.position = centre + distance * Vec3(0.3, 0.4, -1.0).normalized();
   c.up = Vec3::UnitY();
   c.vfov_deg = vfov_deg;
   c.width = width;
   c.height = height;
+  const Vec3 direction = Vec3(0.3, 0.4, -1.0).normalized();
+  // The nearest distance at which every box corner lies within 95% of the image half-extents:
+  // corner k at (x_k, y_k, z_k) in the camera frame centred on the box needs
+  // |x_k| <= 0.95 tan(half) aspect (D + z_k), and the same for y without the aspect.
+  c.position = centre + direction;
+  const double tan_half = std::tan(0.5 * vfov_deg * std::numbers::pi / 180.0);
+  const double aspect = static_cast<double>(width) / height;
+  double distance = 1e-3 * radius;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 corner((k & 1) ? hi.x() : lo.x(), (k & 2) ? hi.y() : lo.y(), (k & 4) ? hi.z() : lo.z());
+    const Vec3 q = to_camera(c, corner) - to_camera(c, centre);
+    distance = std::max({distance, std::abs(q.x()) / (0.95 * tan_half * aspect) - q.z(),
+                         std::abs(q.y()) / (0.95 * tan_half) - q.z(), 1e-3 * radius - q.z()});
+  }
+  c.position = centre + distance * direction;
   return c;
 }
 

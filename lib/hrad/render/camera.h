@@ -34,8 +34,8 @@ std::optional<Vec3> project(const Camera& camera, const Vec3& world);
 Camera cornell_box_camera(int width = 512, int height = 512);
 
 /// A camera that sees the whole axis-aligned box [lo, hi]: it looks at the box centre from the
-/// direction (0.3, 0.4, -1) (the Cornell view, slightly from above and the side), far enough back
-/// that the box's bounding sphere fits the field of view `vfov_deg`.
+/// direction (0.3, 0.4, -1) (the Cornell view, slightly from above and the side), from the nearest
+/// distance at which all eight corners fall within 95% of the image's half-width and half-height.
 Camera fit_camera(const Vec3& lo, const Vec3& hi, int width = 512, int height = 512, double vfov_deg = 40.0);
 
 }  // namespace hrad
