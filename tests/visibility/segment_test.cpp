@@ -192,3 +192,39 @@ TEST(SegmentBlocked, AgreesWithFloatingPointReferenceAwayFromDegeneracies) {
 
 }  // namespace
 }  // namespace hrad
+
+namespace hrad {
+namespace {
+
+// The compact hierarchy and CGAL's AABB_tree only cull; both must give the same answers, also in
+// degenerate configurations (integer grids: segments through shared edges, vertices, in planes).
+TEST(SegmentBlocked, CompactHierarchyAndCgalTreeAgree) {
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<int> g(0, 8);
+  auto gv = [&] { return Vec3(g(rng), g(rng), g(rng)); };
+  for (int scene_id = 0; scene_id < 6; ++scene_id) {
+    Scene s = test::empty_scene();
+    while (s.patches.size() < 40) {
+      const Vec3 a = gv(), b = gv(), c = gv();
+      if ((b - a).cross(c - a).norm() == 0) continue;
+      test::add_patch(s, {a, b, c});
+    }
+    const auto compact = make_visibility(s);
+    VisibilityOptions o;
+    o.cgal_tree_for_segments = true;
+    const auto cgal = make_visibility(s, o);
+    int blocked = 0;
+    for (int i = 0; i < 4000; ++i) {
+      const Vec3 a = gv(), b = gv();
+      const int pa = i % 3 == 0 ? -1 : int(rng() % s.patches.size()), pb = i % 5 == 0 ? -1 : int(rng() % s.patches.size());
+      const bool x = compact->segment_blocked(a, pa, b, pb);
+      ASSERT_EQ(x, cgal->segment_blocked(a, pa, b, pb)) << scene_id << " " << i;
+      blocked += x;
+    }
+    EXPECT_GT(blocked, 400);
+    EXPECT_LT(blocked, 3900);
+  }
+}
+
+}  // namespace
+}  // namespace hrad

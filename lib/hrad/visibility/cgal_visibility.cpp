@@ -31,10 +31,13 @@
 #include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <mutex>
 #include <vector>
 
 #include "hrad/visibility/sampling.h"
+#include "hrad/visibility/segment_bvh.h"
 #include "hrad/visibility/visibility.h"
 
 namespace hrad {
@@ -170,7 +173,7 @@ CGAL::Bbox_3 bbox_of(std::span<const Point> pts) {
 
 class CgalVisibility final : public Visibility {
  public:
-  explicit CgalVisibility(const Scene& scene);
+  CgalVisibility(const Scene& scene, const VisibilityOptions& options);
 
   bool segment_blocked(const Vec3& a, int patch_a, const Vec3& b, int patch_b) const override {
     counters().segment_queries.fetch_add(1, std::memory_order_relaxed);
@@ -213,15 +216,21 @@ class CgalVisibility final : public Visibility {
 
   std::vector<Triangle> triangles_;        ///< non-degenerate fan triangles of all patches
   std::vector<int> triangle_patch_;
+  std::vector<CGAL::Bbox_3> triangle_boxes_;
   std::vector<std::pair<int, int>> patch_triangles_;  ///< [begin, end) into triangles_ per patch
   std::vector<char> patch_planar_;         ///< all vertices exactly coplanar
   std::vector<Point> vertices_;            ///< every patch vertex, for the convex-hull test
+  double magnitude_ = 0.0;                 ///< largest |coordinate| of the scene
   Tree tree_;
+  VisibilityOptions options_;
+  detail::SegmentBvh bvh_;                 ///< segment queries (unless options_ ask for tree_)
+  std::vector<Triangle> bvh_triangles_;    ///< triangles_ in the hierarchy's leaf order
+  std::vector<int> bvh_patch_;
   mutable std::once_flag occlusion_once_;
   mutable bool occlusion_ = true;
 };
 
-CgalVisibility::CgalVisibility(const Scene& scene) {
+CgalVisibility::CgalVisibility(const Scene& scene, const VisibilityOptions& options) : options_(options) {
   patch_triangles_.reserve(scene.patches.size());
   for (std::size_t p = 0; p < scene.patches.size(); ++p) {
     const auto& v = scene.patches[p].vertices;
@@ -230,12 +239,16 @@ CgalVisibility::CgalVisibility(const Scene& scene) {
     std::array<int, 3> tri{-1, -1, -1};
     std::vector<Point> pts;
     for (const Vec3& x : v) pts.push_back(to_point(x));
-    for (const Point& x : pts) vertices_.push_back(x);
+    for (const Point& x : pts) {
+      vertices_.push_back(x);
+      magnitude_ = std::max({magnitude_, std::abs(x.x()), std::abs(x.y()), std::abs(x.z())});
+    }
     for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
       const Triangle t(pts[0], pts[i], pts[i + 1]);
       if (t.is_degenerate()) continue;  // a collinear fan triangle lies on an edge of the others
       triangles_.push_back(t);
       triangle_patch_.push_back(static_cast<int>(p));
+      triangle_boxes_.push_back(t.bbox());
     }
     tri = plane_triple(pts);
     if (tri[0] >= 0)
@@ -244,39 +257,98 @@ CgalVisibility::CgalVisibility(const Scene& scene) {
     patch_planar_.push_back(planar ? 1 : 0);
   }
   tree_.rebuild(triangles_.cbegin(), triangles_.cend());
+  std::vector<detail::Box3> boxes(triangles_.size());
+  for (std::size_t i = 0; i < triangles_.size(); ++i)
+    for (int k = 0; k < 3; ++k) boxes[i].lo[k] = triangle_boxes_[i].min(k), boxes[i].hi[k] = triangle_boxes_[i].max(k);
+  bvh_ = detail::SegmentBvh(boxes);
+  for (std::uint32_t i : bvh_.order()) {
+    bvh_triangles_.push_back(triangles_[i]);
+    bvh_patch_.push_back(triangle_patch_[i]);
+  }
 }
+
+/// Culling test of a segment against a node's box, in doubles: a slab test on boxes padded by
+/// 2^-40 of the largest coordinate magnitude in play (the scene's and the segment's), far more
+/// than the test's rounding error, so it never rejects a box the segment meets. It only prunes
+/// the traversal; every decision about blocking is made by the exact predicates on triangles.
+class SegmentBoxCull {
+ public:
+  SegmentBoxCull(const Point& a, const Point& b, double scene_magnitude) {
+    double m = scene_magnitude;
+    for (int k = 0; k < 3; ++k) m = std::max({m, std::abs(a[k]), std::abs(b[k])});
+    const double pad = std::ldexp(m, -40) + std::numeric_limits<double>::min();
+    for (int k = 0; k < 3; ++k) {
+      origin_[k] = a[k];
+      const double d = b[k] - a[k];
+      flat_[k] = d == 0.0;
+      inverse_[k] = flat_[k] ? 0.0 : 1.0 / d;
+      pad_t_[k] = flat_[k] ? 0.0 : pad * std::abs(inverse_[k]);
+    }
+    pad_ = pad;
+  }
+  bool may_meet(const CGAL::Bbox_3& box) const {
+    double t0 = -0x1.0p-30, t1 = 1.0 + 0x1.0p-30;
+    for (int k = 0; k < 3; ++k) {
+      if (flat_[k]) {
+        if (origin_[k] < box.min(k) - pad_ || origin_[k] > box.max(k) + pad_) return false;
+        continue;
+      }
+      double ta = (box.min(k) - origin_[k]) * inverse_[k], tb = (box.max(k) - origin_[k]) * inverse_[k];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta - pad_t_[k]);
+      t1 = std::min(t1, tb + pad_t_[k]);
+    }
+    return t0 <= t1;
+  }
+
+ private:
+  double origin_[3], inverse_[3], pad_t_[3], pad_;
+  bool flat_[3];
+};
 
 // Traversal that stops at the first triangle blocking the open segment.
 class BlockingTraversal {
  public:
-  BlockingTraversal(const AabbTraits& traits, const std::vector<Triangle>& triangles, const std::vector<int>& patch_of,
-                    const Point& a, int patch_a, const Point& b, int patch_b)
-      : traits_(traits), triangles_(triangles), patch_of_(patch_of), a_(a), b_(b), pa_(patch_a), pb_(patch_b) {}
+  BlockingTraversal(const std::vector<Triangle>& triangles, const std::vector<int>& patch_of,
+                    const std::vector<CGAL::Bbox_3>& boxes, double magnitude, const Point& a, int patch_a,
+                    const Point& b, int patch_b)
+      : triangles_(triangles), patch_of_(patch_of), boxes_(boxes), a_(a), b_(b), pa_(patch_a), pb_(patch_b),
+        cull_(a, b, magnitude) {}
   bool go_further() const { return !blocked_; }
   void intersection(const Segment&, const Primitive& primitive) {
-    const int patch = patch_of_[primitive.id() - triangles_.begin()];
-    if (patch == pa_ || patch == pb_) return;
+    // CGAL's tree hands over the primitives of a two-primitive node without testing their boxes.
+    const std::size_t index = static_cast<std::size_t>(primitive.id() - triangles_.begin());
+    const int patch = patch_of_[index];
+    if (patch == pa_ || patch == pb_ || !cull_.may_meet(boxes_[index])) return;
     if (open_segment_meets_triangle(a_, b_, *primitive.id())) blocked_ = true;
   }
   template <class Node>
-  bool do_intersect(const Segment& s, const Node& node) const {
-    return traits_.do_intersect_object()(s, node.bbox());
+  bool do_intersect(const Segment&, const Node& node) const {
+    return cull_.may_meet(node.bbox());
   }
   bool blocked() const { return blocked_; }
 
  private:
-  const AabbTraits& traits_;
   const std::vector<Triangle>& triangles_;
   const std::vector<int>& patch_of_;
+  const std::vector<CGAL::Bbox_3>& boxes_;
   const Point& a_;
   const Point& b_;
   int pa_, pb_;
+  SegmentBoxCull cull_;
   bool blocked_ = false;
 };
 
 bool CgalVisibility::blocked(const Point& a, int patch_a, const Point& b, int patch_b) const {
   if (a == b || triangles_.empty()) return false;  // the open segment is empty
-  BlockingTraversal traversal(tree_.traits(), triangles_, triangle_patch_, a, patch_a, b, patch_b);
+  if (!options_.cgal_tree_for_segments) {
+    const detail::SegmentCull cull({a.x(), a.y(), a.z()}, {b.x(), b.y(), b.z()}, magnitude_);
+    return bvh_.any_hit(cull, [&](std::uint32_t i) {
+      const int patch = bvh_patch_[i];
+      return patch != patch_a && patch != patch_b && open_segment_meets_triangle(a, b, bvh_triangles_[i]);
+    });
+  }
+  BlockingTraversal traversal(triangles_, triangle_patch_, triangle_boxes_, magnitude_, a, patch_a, b, patch_b);
   tree_.traversal(Segment(a, b), traversal);
   return traversal.blocked();
 }
@@ -459,6 +531,10 @@ bool CgalVisibility::decide_occlusion() const {
 
 }  // namespace
 
-std::unique_ptr<Visibility> make_visibility(const Scene& scene) { return std::make_unique<CgalVisibility>(scene); }
+std::unique_ptr<Visibility> make_visibility(const Scene& scene, const VisibilityOptions& options) {
+  return std::make_unique<CgalVisibility>(scene, options);
+}
+
+std::unique_ptr<Visibility> make_visibility(const Scene& scene) { return make_visibility(scene, VisibilityOptions{}); }
 
 }  // namespace hrad

@@ -78,4 +78,13 @@ class Visibility {
 /// The CGAL implementation: AABB tree of the scene's triangles, exact predicates.
 std::unique_ptr<Visibility> make_visibility(const Scene& scene);
 
+struct VisibilityOptions {
+  /// Segment queries walk CGAL's AABB_tree instead of hrad's compact SAH hierarchy
+  /// (segment_bvh.h). Both cull conservatively and decide with the same exact predicates, so the
+  /// answers are identical; the compact one is faster (visibility_benchmark). Shaft queries
+  /// always use CGAL's tree.
+  bool cgal_tree_for_segments = false;
+};
+std::unique_ptr<Visibility> make_visibility(const Scene& scene, const VisibilityOptions& options);
+
 }  // namespace hrad
