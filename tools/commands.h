@@ -8,5 +8,7 @@ namespace hrad::cli {
 void add_info_command(CLI::App& app);
 void add_render_command(CLI::App& app);
 void add_solve_command(CLI::App& app);
+void add_formfactor_command(CLI::App& app);
+void add_sweep_command(CLI::App& app);
 
 }  // namespace hrad::cli

@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   hrad::cli::add_info_command(app);
   hrad::cli::add_render_command(app);
   hrad::cli::add_solve_command(app);
+  hrad::cli::add_formfactor_command(app);
+  hrad::cli::add_sweep_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
