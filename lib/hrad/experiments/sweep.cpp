@@ -1,0 +1,257 @@
+#include "hrad/experiments/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "hrad/analysis/error_metrics.h"
+#include "hrad/core/error.h"
+
+namespace hrad {
+namespace {
+
+SolveOptions base_options(Method method, const SweepOptions& sweep) {
+  SolveOptions o;
+  o.method = method;
+  o.threads = sweep.threads;
+  return o;
+}
+
+double finest_full_count(const SweepOptions& options) {
+  return *std::max_element(options.element_counts.begin(), options.element_counts.end());
+}
+
+}  // namespace
+
+Solution reflected_part(const Scene& scene, Solution solution) {
+  for (std::size_t f = 0; f < solution.faces.size(); ++f)
+    solution.face_radiosity[f] -= scene.material_of(scene.patches[solution.face_patch[f]]).emission;
+  for (std::size_t p = 0; p < solution.patch_radiosity.size(); ++p)
+    solution.patch_radiosity[p] -= scene.material_of(scene.patches[p]).emission;
+  return solution;
+}
+
+std::vector<std::pair<Method, SweepSetting>> sweep_settings(const Scene& scene, const SweepOptions& options) {
+  const double area = scene.total_area();
+  std::vector<std::pair<Method, SweepSetting>> settings;
+  const auto add = [&](Method m, std::string parameter, double value, SolveOptions o) {
+    settings.push_back({m, SweepSetting{std::move(parameter), value, std::move(o)}});
+  };
+  for (double n : options.element_counts) {
+    SolveOptions o = base_options(Method::kFull, options);
+    o.max_area = area / n;
+    add(Method::kFull, "max_area", o.max_area, o);
+  }
+  for (double n : options.element_counts) {
+    SolveOptions o = base_options(Method::kSubstructure, options);
+    o.max_area = area / n;
+    add(Method::kSubstructure, "max_area", o.max_area, o);
+  }
+  std::vector<double> counts = options.element_counts;
+  std::sort(counts.begin(), counts.end());
+  const double median_count = counts[counts.size() / 2];
+  for (double p : options.patch_counts) {
+    SolveOptions o = base_options(Method::kSubstructure, options);
+    o.max_area = area / median_count;
+    o.patch_area = area / p;
+    add(Method::kSubstructure, "patch_area", o.patch_area, o);
+  }
+  for (double feps : options.feps_values) {
+    SolveOptions o = base_options(Method::kHierarchical, options);
+    o.feps = feps;
+    add(Method::kHierarchical, "feps", feps, o);
+  }
+  for (double fraction : options.aeps_fractions) {
+    SolveOptions o = base_options(Method::kHierarchical, options);
+    o.aeps = area * fraction;
+    add(Method::kHierarchical, "aeps", o.aeps, o);
+  }
+  return settings;
+}
+
+Reference make_reference(const Scene& scene, const SweepOptions& options) {
+  const double n = options.reference_elements > 0 ? options.reference_elements : 4.0 * finest_full_count(options);
+  SolveOptions o = base_options(Method::kFull, options);
+  o.max_area = scene.total_area() / n;
+  o.linear_solver = LinearSolver::kLu;
+  Reference ref;
+  ref.summary = solve(scene, o, &ref.solution);
+  ref.solution = reflected_part(scene, std::move(ref.solution));
+  ref.description = {
+      {"kind", "converged solution computed independently of the runs judged"},
+      {"method", "full"},
+      {"linear_solver", "lu"},
+      {"why", "a direct solve on a uniform mesh finer than any run of the sweep: it shares the exact kernels "
+              "with the runs but none of their discretisations or iterations"},
+      {"max_area", o.max_area},
+      {"elements", ref.summary.elements},
+      {"links", ref.summary.links},
+      {"form_factor_evaluations", ref.summary.form_factor_evaluations},
+      {"visibility_queries", ref.summary.visibility_queries},
+      {"seconds", ref.summary.total_seconds},
+      {"termination", std::string(to_string(ref.summary.termination))},
+      {"samples_per_patch", options.samples_per_patch},
+      {"error_definition",
+       "relative_l2 = sqrt(sum_k w_k |B(x_k)-Bref(x_k)|^2 / sum_k w_k |Bref(x_k)|^2), relative_linf = "
+       "max_k |B-Bref| / max_k |Bref|, over fixed stratified samples x_k on every patch "
+       "(lib/hrad/analysis/error_metrics.h), B the constant reflected radiosity B - E of the leaf containing x_k "
+       "(the emission is input, not computed: including it would let the light dominate both sums)"}};
+  return ref;
+}
+
+std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, const SweepOptions& options) {
+  const auto settings = sweep_settings(scene, options);
+  std::vector<SweepRow> rows;
+  int done = 0;
+  for (const auto& [method, setting] : settings) {
+    if (options.progress)
+      options.progress(done, static_cast<int>(settings.size()),
+                       fmt::format("{} {}={:.4g}", to_string(method), setting.parameter, setting.value));
+    Solution solution;
+    const SolveSummary s = solve(scene, setting.options, &solution);
+    const ErrorMetrics e =
+        compare_solutions(scene, reflected_part(scene, std::move(solution)), reference.solution, options.samples_per_patch);
+    SweepRow row;
+    row.method = std::string(to_string(method));
+    row.parameter = setting.parameter;
+    row.value = setting.value;
+    row.elements = s.elements;
+    row.links = s.links;
+    row.form_factor_evaluations = s.form_factor_evaluations;
+    row.visibility_queries = s.visibility_queries;
+    row.seconds = s.total_seconds;
+    row.error_l2 = e.relative_l2;
+    row.error_linf = e.relative_linf;
+    row.iterations = s.iterations;
+    row.termination = std::string(to_string(s.termination));
+    row.change_per_iteration = s.change_per_iteration;
+    rows.push_back(std::move(row));
+    ++done;
+  }
+  if (options.progress) options.progress(done, done, "done");
+  return rows;
+}
+
+nlohmann::json fit_json(const PowerLawFit& fit) {
+  return {{"a", fit.a}, {"b", fit.b}, {"a_stderr", fit.a_stderr}, {"b_stderr", fit.b_stderr},
+          {"points", fit.points}, {"rms_log_residual", fit.rms_log_residual}, {"converged", fit.converged}};
+}
+
+namespace {
+
+// Fits y ~ a x^b over rows, or null when fewer than 3 distinct positive x (no standard error then).
+nlohmann::json maybe_fit(const std::vector<const SweepRow*>& rows, double (*x_of)(const SweepRow&),
+                         double (*y_of)(const SweepRow&)) {
+  std::vector<double> x, y;
+  std::set<double> distinct;
+  for (const SweepRow* r : rows) {
+    const double xi = x_of(*r), yi = y_of(*r);
+    if (xi > 0 && yi > 0 && std::isfinite(xi) && std::isfinite(yi)) {
+      x.push_back(xi);
+      y.push_back(yi);
+      distinct.insert(xi);
+    }
+  }
+  if (distinct.size() < 3) return nullptr;
+  return fit_json(fit_power_law(x, y));
+}
+
+// Seconds a method needs to reach `target` relative L2 error: the fastest run at or below the target
+// (measured), and a log-log interpolation between it and the slower-error run just before it.
+nlohmann::json time_to_error(const std::vector<const SweepRow*>& rows, double target) {
+  std::vector<const SweepRow*> by_time = rows;
+  std::sort(by_time.begin(), by_time.end(), [](auto* a, auto* b) { return a->seconds < b->seconds; });
+  const SweepRow* first = nullptr;
+  std::size_t k = 0;
+  for (; k < by_time.size(); ++k)
+    if (by_time[k]->error_l2 <= target) { first = by_time[k]; break; }
+  nlohmann::json j;
+  j["target_error_l2"] = target;
+  if (!first) {
+    const SweepRow* best = *std::min_element(rows.begin(), rows.end(),
+                                             [](auto* a, auto* b) { return a->error_l2 < b->error_l2; });
+    j["reached"] = false;
+    j["best_error_l2"] = best->error_l2;
+    j["slowest_seconds"] = by_time.back()->seconds;
+    return j;
+  }
+  j["reached"] = true;
+  j["measured_seconds"] = first->seconds;
+  j["run"] = {{"parameter", first->parameter}, {"value", first->value}, {"error_l2", first->error_l2}};
+  double interpolated = first->seconds;
+  // The latest faster run that missed the target brackets it from above in error.
+  for (std::size_t i = k; i-- > 0;) {
+    const SweepRow* prev = by_time[i];
+    if (prev->error_l2 > target && prev->seconds > 0 && first->seconds > prev->seconds) {
+      const double t = std::log(target / prev->error_l2) / std::log(first->error_l2 / prev->error_l2);
+      interpolated = std::exp(std::log(prev->seconds) + t * std::log(first->seconds / prev->seconds));
+      break;
+    }
+  }
+  j["interpolated_seconds"] = interpolated;
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error) {
+  std::map<std::string, std::vector<const SweepRow*>> by_method, size_runs;
+  for (const SweepRow& r : rows) {
+    by_method[r.method].push_back(&r);
+    if (r.parameter != "patch_area") size_runs[r.method].push_back(&r);  // runs whose element count varies
+  }
+  const auto elements = [](const SweepRow& r) { return double(r.elements); };
+  nlohmann::json j;
+  j["model"] = "y ~ a x^b, least squares in log space (Ceres), one standard error (lib/hrad/analysis/power_law_fit.h)";
+  for (const auto& [method, list] : by_method) {
+    nlohmann::json m;
+    m["time_vs_elements"] = maybe_fit(size_runs[method], +elements, +[](const SweepRow& r) { return r.seconds; });
+    m["links_vs_elements"] =
+        maybe_fit(size_runs[method], +elements, +[](const SweepRow& r) { return double(r.links); });
+    m["time_to_target_error"] = time_to_error(list, target_error);
+    j["methods"][method] = std::move(m);
+  }
+  if (by_method.count("hierarchical")) {
+    std::vector<const SweepRow*> feps_runs;
+    for (const SweepRow* r : by_method["hierarchical"])
+      if (r->parameter == "feps") feps_runs.push_back(r);
+    j["methods"]["hierarchical"]["error_vs_feps"] =
+        maybe_fit(feps_runs, +[](const SweepRow& r) { return r.value; }, +[](const SweepRow& r) { return r.error_l2; });
+  }
+  // The headline: how much faster hierarchical radiosity reaches the target error than the full matrix.
+  const auto& methods = j["methods"];
+  if (methods.contains("full") && methods.contains("hierarchical")) {
+    const auto& full = methods["full"]["time_to_target_error"];
+    const auto& hr = methods["hierarchical"]["time_to_target_error"];
+    nlohmann::json s;
+    s["target_error_l2"] = target_error;
+    if (hr["reached"] && full["reached"]) {
+      s["full_over_hierarchical_measured"] = full["measured_seconds"].get<double>() / hr["measured_seconds"].get<double>();
+      s["full_over_hierarchical_interpolated"] =
+          full["interpolated_seconds"].get<double>() / hr["interpolated_seconds"].get<double>();
+    } else if (hr["reached"]) {
+      s["full_over_hierarchical_at_least"] = full["slowest_seconds"].get<double>() / hr["measured_seconds"].get<double>();
+      s["note"] = "the full matrix did not reach the target in this sweep: the ratio is a lower bound";
+    } else {
+      s["note"] = "the hierarchical solver did not reach the target in this sweep";
+    }
+    j["speedup"] = std::move(s);
+  }
+  return j;
+}
+
+std::string sweep_csv(const std::vector<SweepRow>& rows) {
+  std::string out =
+      "method,parameter,value,elements,links,form_factor_evaluations,visibility_queries,seconds,error_l2,error_linf,"
+      "iterations,termination\n";
+  for (const SweepRow& r : rows)
+    out += fmt::format("{},{},{:.9g},{},{},{},{},{:.6g},{:.9g},{:.9g},{},{}\n", r.method, r.parameter, r.value,
+                       r.elements, r.links, r.form_factor_evaluations, r.visibility_queries, r.seconds, r.error_l2,
+                       r.error_linf, r.iterations, r.termination);
+  return out;
+}
+
+}  // namespace hrad

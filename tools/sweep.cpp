@@ -1,0 +1,98 @@
+// hrad sweep SCENE --out DIR [--quick] [--reference-elements N] [--samples N] [--target-error E] [--threads N]
+//
+// What accuracy costs in time. Runs each method over its accuracy parameter, from coarse to fine:
+//   full          element size (max_area = total area / n, n = 64 .. 1024)
+//   substructure  element size (the same n, input polygons shoot) and shooting-patch size
+//   hierarchical  feps (0.3 .. 0.001, aeps automatic) and aeps (1e-2 .. 1e-4 of the total area)
+// and judges every run against one reference (a full-matrix LU solve on a finer mesh, 4 x the
+// finest full run unless --reference-elements) on fixed samples on every surface. Writes:
+//   DIR/sweep.csv       one row per run: method, parameter, value, elements, links,
+//                       form_factor_evaluations, visibility_queries, seconds, error_l2, error_linf, ...
+//   DIR/reference.json  how the reference was made
+//   DIR/fit.json        Ceres fits: seconds ~ a n^b and links ~ c n^alpha per method, error ~ k feps^beta
+//                       for hierarchical; the time each method needs to reach --target-error (default 1%)
+//                       and the full/hierarchical ratio
+//   DIR/pareto.png      error against time, log-log, the three methods
+//   DIR/command.txt     the command that made them
+// --quick runs 3 small settings per parameter (for tests). Progress goes to stderr.
+#include <fstream>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "commands.h"
+#include "hrad/core/error.h"
+#include "hrad/experiments/sweep.h"
+#include "hrad/io/atomic_file.h"
+#include "hrad/io/obj_reader.h"
+#include "hrad/io/report_json.h"
+#include "plot.h"
+#include "progress_bar.h"
+
+namespace hrad::cli {
+
+void add_sweep_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("sweep", "Run every method over its accuracy parameter; error against time");
+  struct Args {
+    std::string scene, out;
+    bool quick = false;
+    double reference_elements = 0.0, target_error = 0.01;
+    int samples = 256, threads = 0;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("SCENE", args->scene, "Scene file (.obj)")->required();
+  cmd->add_option("--out", args->out, "Output folder")->required();
+  cmd->add_flag("--quick", args->quick, "Three small settings per parameter (for tests)");
+  cmd->add_option("--reference-elements", args->reference_elements,
+                  "Elements of the reference mesh (default 4 x the finest full run)");
+  cmd->add_option("--samples", args->samples, "Error samples per patch (default 256)");
+  cmd->add_option("--target-error", args->target_error, "Relative L2 error for the time-to-error ratio (default 0.01)");
+  cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
+  cmd->callback([args] {
+    if (!(args->samples >= 1 && args->samples <= 1'000'000)) throw Error(fmt::format("--samples must be in [1, 1e6], got {}", args->samples));
+    if (!(args->target_error > 0 && args->target_error < 1)) throw Error(fmt::format("--target-error must be in (0, 1), got {}", args->target_error));
+    if (!(args->reference_elements >= 0 && args->reference_elements <= 1e6))
+      throw Error(fmt::format("--reference-elements must be in [0, 1e6], got {}", args->reference_elements));
+    if (args->threads < 0) throw Error(fmt::format("--threads must be >= 0, got {}", args->threads));
+    std::vector<std::string> warnings;
+    const Scene scene = read_obj_scene(args->scene, &warnings);
+    for (const auto& w : warnings) std::cerr << w << "\n";
+
+    SweepOptions options;
+    options.samples_per_patch = args->samples;
+    options.threads = args->threads;
+    options.reference_elements = args->reference_elements;
+    if (args->quick) {
+      options.element_counts = {32, 64, 128};
+      options.patch_counts = {double(scene.patches.size()), 2.0 * scene.patches.size(), 4.0 * scene.patches.size()};
+      options.feps_values = {0.3, 0.1, 0.03};
+      options.aeps_fractions = {1e-2, 3e-3, 1e-3};
+    }
+    options.progress = show_progress;
+
+    std::cerr << fmt::format("sweep: reference ({} elements, full matrix, LU)...\n",
+                             options.reference_elements > 0 ? options.reference_elements
+                                                            : 4 * options.element_counts.back());
+    const Reference reference = make_reference(scene, options);
+    std::cerr << fmt::format("sweep: reference took {:.2f} s\n", reference.summary.total_seconds);
+    const std::vector<SweepRow> rows = run_sweep(scene, reference, options);
+    const nlohmann::json fits = sweep_fits(rows, args->target_error);
+
+    const std::string dir = args->out;
+    write_file_atomically(dir + "/sweep.csv", [&](std::ostream& o) { o << sweep_csv(rows); });
+    nlohmann::json ref = reference.description;
+    ref["scene"] = args->scene;
+    write_json_file(dir + "/reference.json", ref);
+    write_json_file(dir + "/fit.json", fits);
+    write_file_atomically(dir + "/command.txt", [&](std::ostream& o) {
+      o << fmt::format("build/bin/hrad sweep {} --out {}{}{}\n", args->scene, dir, args->quick ? " --quick" : "",
+                       args->reference_elements > 0 ? fmt::format(" --reference-elements {}", args->reference_elements) : "");
+    });
+    run_plot("pareto.py", {dir + "/sweep.csv", dir + "/pareto.png", "What accuracy costs in time: " + scene.path});
+
+    std::cout << fmt::format("{} runs; wrote {}/sweep.csv, reference.json, fit.json, pareto.png\n", rows.size(), dir);
+    if (fits.contains("speedup")) std::cout << "speedup: " << fits["speedup"].dump() << "\n";
+  });
+}
+
+}  // namespace hrad::cli
