@@ -3,6 +3,7 @@
 // analysis read it. Plain arrays: no OpenMesh or CGAL types cross this boundary.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "hrad/core/types.h"
@@ -16,6 +17,9 @@ struct Solution {
   std::vector<int> face_patch;           ///< the patch (index into Scene::patches) each leaf lies on
   std::vector<Rgb> face_radiosity;       ///< constant radiosity of each leaf element (the unknowns)
   std::vector<Rgb> patch_radiosity;      ///< area-weighted mean radiosity of each patch
+  /// Optional, for figures: each link of a hierarchical solve as the segment between the centroids
+  /// of its receiver and source elements (empty unless SolveOptions::record_links).
+  std::vector<std::pair<Vec3, Vec3>> link_segments;
 };
 
 }  // namespace hrad
