@@ -7,6 +7,8 @@
 
 #include <random>
 
+#include <Eigen/Geometry>
+
 #include "hrad/io/obj_reader.h"
 #include "hrad/visibility/visibility.h"
 #include "hrad/visibility/visible_region.h"
@@ -48,6 +50,31 @@ Scene cluttered_room(int clutter, std::uint64_t seed) {
   return s;
 }
 
+/// A closed unit room (12 triangles) furnished with closed boxes (12 triangles each, random
+/// sizes and orientations, at most `triangles` in all); the boxes shrink like count^(-1/2) so that
+/// the share of blocked rays stays about the same at every scene size. A furnished room is the
+/// usual radiosity scene: rays end on the first object they meet.
+Scene furnished_room(int triangles, std::uint64_t seed) {
+  Scene s = cluttered_room(0, seed);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.1, 0.9), d(-1, 1), e(0.5, 1.0);
+  const int boxes = (triangles - 12) / 12;
+  const double size = 0.5 / std::sqrt(double(boxes));
+  for (int i = 0; i < boxes; ++i) {
+    const Vec3 c(u(rng), u(rng), u(rng));
+    const Eigen::Matrix3d r = Eigen::Quaterniond(Eigen::Vector4d(d(rng), d(rng), d(rng), d(rng)).normalized()).toRotationMatrix();
+    const Vec3 h = size * Vec3(e(rng), e(rng), e(rng));
+    Vec3 v[8];
+    for (int k = 0; k < 8; ++k) v[k] = c + r * Vec3((k & 1 ? 1 : -1) * h.x(), (k & 2 ? 1 : -1) * h.y(), (k & 4 ? 1 : -1) * h.z());
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads) {
+      add_patch(s, {v[q[0]], v[q[1]], v[q[2]]});
+      add_patch(s, {v[q[0]], v[q[2]], v[q[3]]});
+    }
+  }
+  return s;
+}
+
 struct Query {
   Vec3 a, b;
   int pa, pb;
@@ -73,9 +100,9 @@ std::vector<Query> wall_queries(const Scene& s, int count, std::uint64_t seed) {
   return q;
 }
 
-void segment_queries(benchmark::State& state, bool cgal_tree) {
+void segment_queries(benchmark::State& state, bool cgal_tree, bool furnished) {
   const int triangles = static_cast<int>(state.range(0));
-  const Scene s = cluttered_room(triangles - 12, 1);
+  const Scene s = furnished ? furnished_room(triangles, 1) : cluttered_room(triangles - 12, 1);
   VisibilityOptions options;
   options.cgal_tree_for_segments = cgal_tree;
   const auto v = make_visibility(s, options);
@@ -89,17 +116,23 @@ void segment_queries(benchmark::State& state, bool cgal_tree) {
     benchmark::DoNotOptimize(b);
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(done));
-  state.counters["triangles"] = triangles;
+  state.counters["triangles"] = double(s.patches.size());
   state.counters["blocked_share"] = double(blocked) / double(done);
 }
 
-// Segments between points of two different walls of a unit room holding `triangles` in all.
-void BM_SegmentQueries(benchmark::State& state) { segment_queries(state, false); }
-BENCHMARK(BM_SegmentQueries)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kNanosecond);
+// Segments between points of two different walls of a unit room holding `triangles` in all:
+// furnished with closed boxes, or filled with a uniform soup of small triangles (the hard case:
+// few rays end early, and a ray crosses O(n^(1/3)) boxes of the hierarchy).
+void BM_SegmentQueriesFurnished(benchmark::State& state) { segment_queries(state, false, true); }
+BENCHMARK(BM_SegmentQueriesFurnished)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kNanosecond);
+void BM_SegmentQueriesSoup(benchmark::State& state) { segment_queries(state, false, false); }
+BENCHMARK(BM_SegmentQueriesSoup)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kNanosecond);
 
 // The same queries through CGAL's AABB_tree (same exact predicates, same answers).
-void BM_SegmentQueriesCgalTree(benchmark::State& state) { segment_queries(state, true); }
-BENCHMARK(BM_SegmentQueriesCgalTree)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kNanosecond);
+void BM_SegmentQueriesFurnishedCgalTree(benchmark::State& state) { segment_queries(state, true, true); }
+BENCHMARK(BM_SegmentQueriesFurnishedCgalTree)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kNanosecond);
+void BM_SegmentQueriesSoupCgalTree(benchmark::State& state) { segment_queries(state, true, false); }
+BENCHMARK(BM_SegmentQueriesSoupCgalTree)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kNanosecond);
 
 void BM_BuildTree(benchmark::State& state) {
   const Scene s = cluttered_room(static_cast<int>(state.range(0)) - 12, 1);

@@ -145,6 +145,12 @@ std::vector<Facet> hull_facets(std::span<const Point> pts) {
         }
         if (pos && neg) continue;
         if (!pos && !neg) return {};  // all coplanar: no 3D shaft
+        // A facet holding more than three points is found once per triple: keep its first.
+        const bool known = std::any_of(facets.begin(), facets.end(), [&](const Facet& f) {
+          return f.side(pts[i]) == CGAL::COPLANAR && f.side(pts[j]) == CGAL::COPLANAR &&
+                 f.side(pts[k]) == CGAL::COPLANAR;
+        });
+        if (known) continue;
         if (neg) facets.push_back({pts[i], pts[k], pts[j]});
         else facets.push_back({pts[i], pts[j], pts[k]});
       }

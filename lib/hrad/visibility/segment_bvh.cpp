@@ -7,7 +7,7 @@ namespace {
 
 constexpr int kBins = 16;
 constexpr std::uint32_t kLeafSize = 4;
-constexpr std::uint32_t kMaxDepth = 48;  // the traversal stack holds 64 entries
+constexpr std::uint32_t kMaxDepth = 48;  // bounds the traversal stack (SegmentBvh::kStack)
 
 float round_down(double x) {
   float f = static_cast<float>(x);
@@ -117,27 +117,48 @@ SegmentBvh::SegmentBvh(const std::vector<Box3>& boxes) {
     tasks.push_back({left + 1, mid, t.end, t.depth + 1});
     tasks.push_back({left, t.begin, mid, t.depth + 1});
   }
-  // Inner nodes in depth-first order, each with its two children's boxes.
+  // Collapse to four-wide nodes: a node's children are its binary children, with inner ones
+  // opened (largest box first) until there are four.
   store(build[0].box, root_lo_, root_hi_);
   if (build[0].count == 0) {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> todo{{0, 0}};  // (build node, slot)
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> todo{{0, 0}};  // (build node, node)
     nodes_.emplace_back();
     while (!todo.empty()) {
       const auto [b, slot] = todo.back();
       todo.pop_back();
-      for (int c = 0; c < 2; ++c) {
-        const BuildNode& child = build[build[b].first + c];
-        Node& out = nodes_[slot];
-        store(child.box, out.lo[c], out.hi[c]);
-        out.count[c] = child.count;
-        if (child.count > 0) {
-          out.child[c] = child.first;
-        } else {
-          const auto next = static_cast<std::uint32_t>(nodes_.size());
-          nodes_[slot].child[c] = next;
+      std::vector<std::uint32_t> kids{build[b].first, build[b].first + 1};
+      while (kids.size() < 4) {
+        int open = -1;
+        double area = -1.0;
+        for (std::size_t i = 0; i < kids.size(); ++i)
+          if (build[kids[i]].count == 0 && build[kids[i]].box.half_area() > area)
+            area = build[kids[i]].box.half_area(), open = static_cast<int>(i);
+        if (open < 0) break;
+        const std::uint32_t inner = kids[open];
+        kids[open] = build[inner].first;
+        kids.push_back(build[inner].first + 1);
+      }
+      for (std::size_t c = 0; c < kids.size(); ++c) {
+        const BuildNode& child = build[kids[c]];
+        float lo[3], hi[3];
+        store(child.box, lo, hi);
+        std::uint32_t next = 0;
+        if (child.count == 0) {
+          next = static_cast<std::uint32_t>(nodes_.size());
           nodes_.emplace_back();
-          todo.push_back({build[b].first + c, next});
+          todo.push_back({kids[c], next});
         }
+        Node& out = nodes_[slot];
+        for (int k = 0; k < 3; ++k) out.lo[k][c] = lo[k], out.hi[k][c] = hi[k];
+        out.count[c] = child.count;
+        out.child[c] = child.count > 0 ? child.first : next;
+        out.valid |= 1 << c;
+      }
+      for (std::size_t c = kids.size(); c < 4; ++c) {  // unused slots: empty boxes, never valid
+        Node& out = nodes_[slot];
+        for (int k = 0; k < 3; ++k) out.lo[k][c] = 1.0f, out.hi[k][c] = 0.0f;
+        out.count[c] = 0;
+        out.child[c] = 0;
       }
     }
   }

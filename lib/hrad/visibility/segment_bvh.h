@@ -1,6 +1,7 @@
 // A compact bounding-volume hierarchy for any-hit segment queries: binned surface-area-heuristic
-// build (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies"), 32-byte
-// nodes with float boxes rounded outward, iterative traversal. It only culls: the caller's exact
+// build (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies"), collapsed to
+// four children per node whose float boxes are tested together with SSE (Dammertz et al. 2008,
+// "Shallow bounding volume hierarchies for fast SIMD ray tracing"), iterative traversal. It only culls: the caller's exact
 // test decides every primitive, and every culling test is conservative (it can visit a box the
 // segment misses, never skip one it meets). No CGAL here.
 #pragma once
@@ -11,6 +12,8 @@
 #include <cstdint>
 #include <limits>
 #include <vector>
+
+#include <immintrin.h>
 
 namespace hrad::detail {
 
@@ -38,13 +41,18 @@ class SegmentCull {
     double m = scene_magnitude;
     for (int k = 0; k < 3; ++k) m = std::max({m, std::abs(a[k]), std::abs(b[k])});
     const double pad = std::ldexp(m, -40) + std::numeric_limits<double>::min();
+    // The four-wide float test pads by 2^-16 m, far above float rounding (2^-24 relative).
+    const double pad4 = std::ldexp(m, -16) + std::numeric_limits<float>::min();
     for (int k = 0; k < 3; ++k) {
       const double d = b[k] - a[k];
       inverse_[k] = 1.0 / d;  // +-inf when d == 0
-      // (box - pad - a) * inverse, with the sign of inverse choosing which face is near.
-      near_offset_[k] = inverse_[k] >= 0 ? -pad - a[k] : pad - a[k];
-      far_offset_[k] = inverse_[k] >= 0 ? pad - a[k] : -pad - a[k];
       near_is_lo_[k] = inverse_[k] >= 0;
+      // (box - pad - a) * inverse, with the sign of inverse choosing which face is near.
+      near_offset_[k] = near_is_lo_[k] ? -pad - a[k] : pad - a[k];
+      far_offset_[k] = near_is_lo_[k] ? pad - a[k] : -pad - a[k];
+      inverse4_[k] = _mm_set1_ps(static_cast<float>(inverse_[k]));
+      near_offset4_[k] = _mm_set1_ps(static_cast<float>(near_is_lo_[k] ? -pad4 - a[k] : pad4 - a[k]));
+      far_offset4_[k] = _mm_set1_ps(static_cast<float>(near_is_lo_[k] ? pad4 - a[k] : -pad4 - a[k]));
     }
   }
   template <class T>
@@ -60,9 +68,23 @@ class SegmentCull {
     }
     return t0 <= t1;
   }
+  /// The same test on four float boxes at once (lo[axis][box], hi[axis][box]); bit i of the
+  /// result is set when box i may meet the segment. _mm_max_ps/_mm_min_ps return their second
+  /// operand when the first is NaN, so a NaN slab is ignored here too.
+  int may_meet4(const float (*lo)[4], const float (*hi)[4]) const {
+    __m128 t0 = _mm_set1_ps(-0x1.0p-20f), t1 = _mm_set1_ps(1.0f + 0x1.0p-20f);
+    for (int k = 0; k < 3; ++k) {
+      const __m128 near = _mm_load_ps(near_is_lo_[k] ? lo[k] : hi[k]);
+      const __m128 far = _mm_load_ps(near_is_lo_[k] ? hi[k] : lo[k]);
+      t0 = _mm_max_ps(_mm_mul_ps(_mm_add_ps(near, near_offset4_[k]), inverse4_[k]), t0);
+      t1 = _mm_min_ps(_mm_mul_ps(_mm_add_ps(far, far_offset4_[k]), inverse4_[k]), t1);
+    }
+    return _mm_movemask_ps(_mm_cmple_ps(t0, t1));
+  }
 
  private:
   double inverse_[3], near_offset_[3], far_offset_[3];
+  __m128 inverse4_[3], near_offset4_[3], far_offset4_[3];
   bool near_is_lo_[3];
 };
 
@@ -86,13 +108,15 @@ class SegmentBvh {
       return false;
     };
     if (nodes_.empty()) return leaf(0, static_cast<std::uint32_t>(order_.size()));
-    std::uint32_t stack[64];
+    std::uint32_t stack[kStack];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
       const Node& n = nodes_[stack[--top]];
-      for (int c = 1; c >= 0; --c) {
-        if (!cull.may_meet(n.lo[c], n.hi[c])) continue;
+      int mask = cull.may_meet4(n.lo, n.hi) & n.valid;
+      while (mask != 0) {
+        const int c = __builtin_ctz(static_cast<unsigned>(mask));
+        mask &= mask - 1;
         if (n.count[c] > 0) {
           if (leaf(n.child[c], n.count[c])) return true;
         } else {
@@ -103,15 +127,17 @@ class SegmentBvh {
     return false;
   }
 
+  static constexpr int kStack = 3 * 48 + 4;  ///< depth <= 48 binary levels, <= 3 pushes per level
+
  private:
-  /// An inner node holding both children's boxes (one cache line): a child is a leaf range
+  /// An inner node with up to four children's boxes: a child is a leaf range
   /// [child, child + count) of order() when count > 0, else the index of an inner node.
   struct alignas(64) Node {
-    float lo[2][3], hi[2][3];  ///< rounded outward from the double boxes
-    std::uint32_t child[2];
-    std::uint32_t count[2];
+    float lo[3][4], hi[3][4];  ///< [axis][child], rounded outward from the double boxes
+    std::uint32_t child[4];
+    std::uint32_t count[4];
+    int valid = 0;             ///< bit i set when child i exists
   };
-  static_assert(sizeof(Node) == 64);
   std::vector<Node> nodes_;
   float root_lo_[3], root_hi_[3];
   std::vector<std::uint32_t> order_;
