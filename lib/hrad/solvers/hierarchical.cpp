@@ -10,12 +10,6 @@
 namespace hrad {
 namespace {
 
-double largest_emission(const Scene& scene) {
-  double e = 0.0;
-  for (const Material& m : scene.materials) e = std::max(e, m.emission.maxCoeff());
-  return e;
-}
-
 /// Both directions of every stored interaction, in link order (gather sums in this order).
 std::vector<Link> directed_links(const std::vector<detail::LinkPair>& pairs) {
   std::vector<Link> links;
@@ -27,15 +21,43 @@ std::vector<Link> directed_links(const std::vector<detail::LinkPair>& pairs) {
   return links;
 }
 
+/// Largest radiosity a closed scene can reach: with factors summing to at most 1 per element,
+/// B <= E_max / (1 - rho_max) (the Neumann series of B = E + rho F B).
+double radiosity_bound(const Scene& scene) {
+  double e = 0.0, rho = 0.0;
+  for (const Material& m : scene.materials) {
+    e = std::max(e, m.emission.maxCoeff());
+    rho = std::max(rho, m.reflectance.maxCoeff());
+  }
+  return e / (1.0 - rho);
+}
+
 /// Jacobi iterations of gather and push-pull (HSA 1991 sec. 4, "SolveSystem"). Returns false when
 /// the iteration stopped without converging.
-bool solve_links(SolverContext& ctx, ElementHierarchy& h, const std::vector<Link>& links) {
+///
+/// HSA's links are reciprocal and tile every pair of patches, so the factors of a whole patch sum
+/// to 1 in a closed scene, but those of a single element need not: an element inherits its
+/// ancestors' average factors. The gather operator K is self-adjoint in the area-weighted inner
+/// product with area-mean row sum 1, so its largest eigenvalue exceeds 1 whenever the row sums
+/// differ; as rho -> 1, rho * lambda_max can pass 1 and the iteration grows without bound. That is
+/// reported as a failure (twice the physical bound E_max / (1 - rho_max) is never reached by a
+/// contracting iteration started at B = E with row sums near 1), before any overflow.
+bool solve_links(SolverContext& ctx, ElementHierarchy& h, const std::vector<Link>& links, double bound) {
   auto phase = ctx.phase("solve");
   h.pull_radiosity();  // interior nodes hold the area average their links are gathered from
   while (true) {
     gather(h, links);
     const double change = push_pull(h, ctx.channels());
     if (ctx.record_iteration(change)) break;
+    double largest = 0.0;
+    for (int p = 0; p < h.patch_count(); ++p) largest = std::max(largest, h.node(h.root(p)).radiosity.maxCoeff());
+    if (largest > 2.0 * bound) {
+      ctx.set_failed("diverging: the mean radiosity of a patch (" + std::to_string(largest) +
+                     ") passed twice the bound E_max / (1 - rho_max) = " + std::to_string(bound) +
+                     " after " + std::to_string(ctx.summary().iterations) +
+                     " iterations; the links' factors sum above 1 on some elements (try a smaller --feps or --aeps)");
+      break;
+    }
   }
   return ctx.summary().termination == Termination::kConverged;
 }
@@ -48,7 +70,6 @@ HierarchicalTolerances hierarchical_tolerances(const Scene& scene, const SolveOp
   t.bfeps = options.bfeps;
   if (t.feps == 0.0 && t.bfeps == 0.0) t.feps = kAutoFeps;
   t.aeps = options.aeps > 0.0 ? options.aeps : kAutoAepsFraction * scene.total_area();
-  (void)largest_emission;
   return t;
 }
 
@@ -80,6 +101,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& options,
 
   std::vector<detail::LinkPair> pairs;
   std::vector<Link> links;
+  const double bound = radiosity_bound(scene);
   int passes = 0;
   while (true) {
     detail::RefineResult refined;
@@ -95,7 +117,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& options,
                  std::to_string(links.size()) + " links");
     // A re-refinement that changed nothing leaves the last solution consistent with its links.
     if (passes > 1 && !changed) break;
-    if (!solve_links(ctx, h, links)) break;
+    if (!solve_links(ctx, h, links, bound)) break;
     // BF refinement: the tolerance depends on B, so refine again with the new radiosity (HSA sec. 4.2).
     if (t.bfeps <= 0.0 || passes >= kMaxRefinePasses) break;
     work = pairs;

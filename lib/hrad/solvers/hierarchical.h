@@ -25,13 +25,13 @@
 namespace hrad {
 
 /// Form-factor tolerance used when neither --feps nor --bfeps is given.
-inline constexpr double kAutoFeps = 0.02;
+inline constexpr double kAutoFeps = 0.005;
 /// B*F tolerance when only --bfeps mode is wanted with an automatic value: this fraction of the
 /// largest emission of any channel (not used unless SolveOptions::bfeps < 0 is ever allowed; kept
 /// for the report and the sweeps).
 inline constexpr double kAutoBfepsFraction = 0.002;
 /// Smallest element area when --aeps is 0: this fraction of the scene's total area.
-inline constexpr double kAutoAepsFraction = 1.0 / 20000.0;
+inline constexpr double kAutoAepsFraction = 1.0 / 500.0;
 /// BF refinement re-refines after each solve at most this many times (HSA sec. 4.2).
 inline constexpr int kMaxRefinePasses = 8;
 
