@@ -90,6 +90,24 @@ TEST(Classify, WallsTouchingTheShaftDoNotMakeItPartial) {
   EXPECT_EQ(v->classify(square_z(0.75, 1, 0.25, 0.5, 0, true), floor, wall_el, 2), PairClass::kFullyVisible);
 }
 
+TEST(Classify, OccludersBehindEitherPlaneAreIgnored) {
+  // A block's side face (x = 1, front +x) and a ceiling reaching over the block: the block's top
+  // lies in the hull of the pair but only behind the side face's plane, where no facing pair is.
+  Scene s = empty_scene();
+  const std::vector<Vec3> side{{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}};
+  const auto ceiling = square_z(-2, 4, -2, 3, 3, false);
+  const int is = add_patch(s, side), ic = add_patch(s, ceiling);
+  add_patch(s, square_z(0, 1, 0, 1, 1, true));  // the block's top, sharing the side's top edge
+  const auto v = make_visibility(s);
+  EXPECT_EQ(v->classify(side, is, ceiling, ic), PairClass::kFullyVisible);
+  // Moved in front of the side face, the same occluder matters.
+  Scene t = empty_scene();
+  add_patch(t, side);
+  add_patch(t, ceiling);
+  add_patch(t, square_z(1.5, 2.5, 0, 1, 1.5, true));
+  EXPECT_EQ(make_visibility(t)->classify(side, 0, ceiling, 1), PairClass::kPartial);
+}
+
 TEST(Classify, OccluderInTheBoxButOutsideTheShaftIsIgnored) {
   Scene s = empty_scene();
   const auto b = square_z(2, 3, 0, 1, 1, false);
@@ -133,6 +151,8 @@ TEST(Classify, AgreesWithSampledRaysOnRandomScenes) {
       if (t1 + t2 > 1) { t1 = 1 - t1; t2 = 1 - t2; }
       const Vec3 pa = a[0] + s1 * (a[1] - a[0]) + s2 * (a[2] - a[0]);
       const Vec3 pb = b[0] + t1 * (b[1] - b[0]) + t2 * (b[2] - b[0]);
+      // Classification speaks for mutually facing pairs only.
+      if (s.patches[ia].normal.dot(pb - pa) <= 0 || s.patches[ib].normal.dot(pa - pb) <= 0) continue;
       (v->segment_blocked(pa, ia, pb, ib) ? blocked_rays : free_rays)++;
     }
     if (c == PairClass::kFullyVisible) EXPECT_EQ(blocked_rays, 0) << scene_id;

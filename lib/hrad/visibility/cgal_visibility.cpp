@@ -14,9 +14,12 @@
 //     triangle in more than an endpoint (it runs along the surface or crosses it).
 // Pair classification (shaft culling, Haines & Wallace 1994): the shaft of two convex polygons
 // A and B is S = conv(A u B), which holds every segment between them; for A, B not coplanar the
-// open segments between their relative interiors lie in the interior of S. So an occluder
-// triangle T can hide a set of pairs of positive measure only if T meets int(S):
-//   * T is left out when a facet plane of S, or T's own plane, weakly separates T from S;
+// open segments between their relative interiors lie in the interior of S. Only mutually facing
+// pairs count (those join A', the part of A in front of B's plane, to B', the part of B in front
+// of A's plane), so the shaft used is S cut by the closed front half-spaces of both planes, which
+// holds conv(A' u B'). An occluder triangle T
+// can hide a set of facing pairs of positive measure only if T meets the shaft's interior:
+//   * T is left out when a facet plane of the shaft, or T's own plane, weakly separates them;
 //   * T surely meets int(S) when its vertices lie strictly inside every facet plane;
 //   * otherwise (T touches S in a way these planes cannot settle) the pair is conservatively
 //     partial, and sampling decides.
@@ -433,8 +436,15 @@ PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a
   if (!any_strictly_in_front(b, a)) return PairClass::kFacingAway;
   std::vector<Point> pts(a.begin(), a.end());
   pts.insert(pts.end(), b.begin(), b.end());
-  const std::vector<Facet> facets = hull_facets(pts);
+  std::vector<Facet> facets = hull_facets(pts);
   if (facets.empty()) return PairClass::kFacingAway;  // coplanar: no segment leaves the plane
+  // Only mutually facing pairs matter (estimate() counts no other), and they join A' to B' (see
+  // the top of this file): the closed front half-spaces of both planes bound their shaft too.
+  for (std::span<const Point> poly : {a, b}) {
+    if (poly.size() < 3) continue;
+    const auto t = plane_triple(poly);
+    if (t[0] >= 0) facets.push_back({poly[t[0]], poly[t[1]], poly[t[2]]});
+  }
   std::vector<int> hits;
   ShaftTraversal traversal(triangles_, triangle_patch_, facets, pts, patch_a, patch_b, &hits);
   if (!triangles_.empty()) tree_.traversal(bbox_of(pts), traversal);
