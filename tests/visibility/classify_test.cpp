@@ -1,6 +1,7 @@
 // Pair classification (shaft culling with exact predicates) and sampled pair visibility.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "hrad/visibility/visibility.h"
@@ -106,6 +107,20 @@ TEST(Classify, OccludersBehindEitherPlaneAreIgnored) {
   add_patch(t, ceiling);
   add_patch(t, square_z(1.5, 2.5, 0, 1, 1.5, true));
   EXPECT_EQ(make_visibility(t)->classify(side, 0, ceiling, 1), PairClass::kPartial);
+}
+
+TEST(Classify, OccluderTouchingAShaftEdgeIsDecidedExactly) {
+  // Floor and ceiling unit squares: the shaft is the unit cube. A triangle whose edge touches the
+  // cube's vertical edge x = y = 1 at one point, and otherwise stays outside, straddles every
+  // facet plane and its own plane separates nothing: the exact clipping settles it as visible.
+  // Shifted by 2^-30 the edge cuts a sliver of the cube: partial.
+  for (const double shift : {0.0, std::ldexp(1.0, -30)}) {
+    Scene s = empty_scene();
+    const int a = add_patch(s, kFloor), b = add_patch(s, kCeiling);
+    add_patch(s, {{1.5 - shift, 0.5, 0.5}, {0.5 - shift, 1.5, 0.5}, {1.5, 1.5, 0.2}});
+    const auto v = make_visibility(s);
+    EXPECT_EQ(v->classify(kFloor, a, kCeiling, b), shift == 0.0 ? PairClass::kFullyVisible : PairClass::kPartial);
+  }
 }
 
 TEST(Classify, OccluderInTheBoxButOutsideTheShaftIsIgnored) {

@@ -20,9 +20,9 @@
 // holds conv(A' u B'). An occluder triangle T
 // can hide a set of facing pairs of positive measure only if T meets the shaft's interior:
 //   * T is left out when a facet plane of the shaft, or T's own plane, weakly separates them;
-//   * T surely meets int(S) when its vertices lie strictly inside every facet plane;
-//   * otherwise (T touches S in a way these planes cannot settle) the pair is conservatively
-//     partial, and sampling decides.
+//   * T surely meets the interior when its vertices lie strictly inside every facet plane;
+//   * otherwise T is clipped to the shaft in exact rational arithmetic (shaft_exact.h): it
+//     misses the interior iff what is left lies in one bounding plane.
 // A pair is fully hidden when one convex planar patch separates A from B strictly and every
 // segment between a vertex of A and a vertex of B meets it: the segments between two convex
 // polygons cross a plane that separates them inside the convex hull of the vertex-pair
@@ -41,6 +41,7 @@
 
 #include "hrad/visibility/sampling.h"
 #include "hrad/visibility/segment_bvh.h"
+#include "hrad/visibility/shaft_exact.h"
 #include "hrad/visibility/visibility.h"
 
 namespace hrad {
@@ -387,11 +388,23 @@ class ShaftTraversal {
       neg |= o == CGAL::NEGATIVE;
     }
     if (!(pos && neg)) return;  // t's plane weakly separates the shaft from t
-    hits_->push_back(patch);    // meets int(S), or touches it in a way left to sampling
+    bool inside = true;
+    for (const Facet& f : facets_)
+      for (int k = 0; k < 3 && inside; ++k) inside = f.side(t[k]) == CGAL::POSITIVE;
+    if (!inside && !meets_interior_exactly(t)) return;  // touches the shaft's boundary only
+    hits_->push_back(patch);
   }
   template <class Node>
   bool do_intersect(const CGAL::Bbox_3& box, const Node& node) const {
     return CGAL::do_overlap(box, node.bbox());
+  }
+
+ private:
+  static Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
+  bool meets_interior_exactly(const Triangle& t) const {
+    std::vector<std::array<Vec3, 3>> planes;
+    for (const Facet& f : facets_) planes.push_back({to_vec(f.p), to_vec(f.q), to_vec(f.r)});
+    return detail::triangle_meets_interior({to_vec(t[0]), to_vec(t[1]), to_vec(t[2])}, planes);
   }
 
  private:
