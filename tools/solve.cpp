@@ -6,7 +6,7 @@
 //   --method M             full (classical, n x n matrix), substructure (patches shoot, elements
 //                          receive) or hierarchical (HSA 1991 quadtrees and links); default hierarchical
 //   --max-area A           full/substructure: largest element area, scene units^2
-//                          (default: total area / 1000)
+//                          (default: total area / 250)
 //   --patch-area A         substructure: largest shooting-patch area (default: the input polygons)
 //   --feps F               hierarchical: form-factor refinement tolerance (default automatic)
 //   --bfeps B              hierarchical: B*F refinement tolerance (radiosity units; default unused)
@@ -17,6 +17,10 @@
 //   --linear-solver S      full: lu (default, direct), jacobi or gauss_seidel
 //   --effects auto|all     auto (default) simulates only what the scene needs (visibility, colour,
 //                          bounces); all forces everything on (same answer, slower)
+//   --kernel contour|analytic
+//                          unoccluded form factors: contour (default: Gauss points on the receiver,
+//                          Lambert's exact point-to-polygon formula) or analytic (closed-form
+//                          polygon-to-polygon, ~1e-13, much slower)
 //   --visibility-samples K point pairs per partially visible pair (default 16)
 //   --threads N            worker threads (default: all cores)
 //   --report R.json        the solve report (see lib/hrad/io/report_json.h)
@@ -43,7 +47,7 @@ namespace hrad::cli {
 void add_solve_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("solve", "Solve the radiosity of a scene (full, substructure or hierarchical)");
   struct Args {
-    std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", report, out;
+    std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", kernel = "contour", report, out;
     double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
     int max_iterations = 10000, visibility_samples = 16, threads = 0;
     bool quiet = false;
@@ -51,7 +55,7 @@ void add_solve_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   cmd->add_option("SCENE", args->scene, "Scene file (.obj)")->required();
   cmd->add_option("--method", args->method, "full | substructure | hierarchical (default hierarchical)");
-  cmd->add_option("--max-area", args->max_area, "Full/substructure: largest element area (default total/1000)");
+  cmd->add_option("--max-area", args->max_area, "Full/substructure: largest element area (default total/250)");
   cmd->add_option("--patch-area", args->patch_area, "Substructure: largest shooting-patch area (default: input polygons)");
   cmd->add_option("--feps", args->feps, "Hierarchical: form-factor tolerance (default automatic)");
   cmd->add_option("--bfeps", args->bfeps, "Hierarchical: B*F tolerance (default unused)");
@@ -60,6 +64,7 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--max-iterations", args->max_iterations, "Iteration limit (default 10000)");
   cmd->add_option("--linear-solver", args->linear_solver, "Full: lu | jacobi | gauss_seidel (default lu)");
   cmd->add_option("--effects", args->effects, "auto | all (default auto)");
+  cmd->add_option("--kernel", args->kernel, "Form-factor kernel: contour (default) | analytic");
   cmd->add_option("--visibility-samples", args->visibility_samples, "Point pairs per partially visible pair (default 16)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--report", args->report, "Write the solve report (JSON) here");
@@ -71,6 +76,7 @@ void add_solve_command(CLI::App& app) {
     o.method = parse_method(args->method);
     o.linear_solver = parse_linear_solver(args->linear_solver);
     o.effects = parse_effects_mode(args->effects);
+    o.kernel = parse_kernel(args->kernel);
     // Given on the command line, an area or tolerance must be a positive number (0 is "automatic"
     // only when the option is left out).
     for (const auto& [name, value] : {std::pair<const char*, double>{"--max-area", args->max_area},

@@ -25,6 +25,7 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
                   {"max_iterations", options.max_iterations},
                   {"linear_solver", std::string(to_string(options.linear_solver))},
                   {"effects", std::string(to_string(options.effects))},
+                  {"kernel", std::string(to_string(options.kernel))},
                   {"visibility_samples", options.visibility_samples},
                   {"threads", options.threads}};
   j["termination"] = std::string(to_string(summary.termination));

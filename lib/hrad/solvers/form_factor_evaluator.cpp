@@ -1,10 +1,18 @@
 #include "hrad/solvers/form_factor_evaluator.h"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
+#include <numbers>
+#include <vector>
 #include <cassert>
 
+#include "hrad/formfactor/clip_polygon.h"
+#include "hrad/formfactor/gauss_legendre.h"
+#include "hrad/formfactor/polygon_quadrature.h"
 #include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/geometry/polygon.h"
+#include "hrad/visibility/sampling.h"
 #include "hrad/visibility/visibility.h"
 
 namespace hrad {
@@ -19,9 +27,10 @@ bool behind(std::span<const Vec3> a, std::span<const Vec3> b) {
   return true;
 }
 
-// Deterministic seed from the pair's geometry (splitmix-style mixing), so that a pair gets the
-// same visibility samples whichever thread asks, and in whichever order.
-std::uint64_t pair_seed(std::span<const Vec3> a, int pa, std::span<const Vec3> b, int pb) {
+// Deterministic seed from the pair's geometry (splitmix-style mixing), so that a pair gets the same
+// visibility samples whichever thread asks and in whichever order. Vertices enter relative to their
+// patch's first vertex and diameter, quantized, so that a scaled scene draws the same samples.
+std::uint64_t pair_seed(const Scene& scene, std::span<const Vec3> a, int pa, std::span<const Vec3> b, int pb) {
   std::uint64_t h = 0x9E3779B97F4A7C15ull ^ (static_cast<std::uint64_t>(pa) << 32) ^ static_cast<std::uint32_t>(pb);
   auto mix = [&h](std::uint64_t x) {
     h ^= x + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
@@ -29,18 +38,100 @@ std::uint64_t pair_seed(std::span<const Vec3> a, int pa, std::span<const Vec3> b
     h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
     h ^= h >> 31;
   };
-  for (const Vec3& v : a)
-    for (int k = 0; k < 3; ++k) mix(std::bit_cast<std::uint64_t>(v[k]));
-  for (const Vec3& v : b)
-    for (int k = 0; k < 3; ++k) mix(std::bit_cast<std::uint64_t>(v[k]));
+  auto add = [&](std::span<const Vec3> poly, int patch) {
+    const Patch& p = scene.patches[static_cast<std::size_t>(patch)];
+    const double size = polygon_diameter(p.vertices);
+    for (const Vec3& v : poly)
+      for (int k = 0; k < 3; ++k)
+        mix(static_cast<std::uint64_t>(std::llround((v[k] - p.vertices[0][k]) / size * 0x1p30)));
+  };
+  add(a, pa);
+  add(b, pb);
   return h;
+}
+
+
+// Gauss points on an element, the same for every source so that each point's factors to a closed
+// surface sum to 1 and so do the element's (closure, exact to rounding): a quad gets the 3 x 3
+// product Gauss rule on its bilinear map, a triangle the collapsed rule of order 2 (12 points).
+void receiver_points(std::span<const Vec3> p, const Vec3& n, std::vector<detail::WeightedPoint>& out) {
+  out.clear();
+  if (p.size() != 4) {
+    detail::polygon_quadrature(p, n, 2, out);
+    return;
+  }
+  const detail::GaussRule g = detail::gauss_legendre(3);
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    const double u = 0.5 * (g.nodes[i] + 1.0);
+    for (std::size_t j = 0; j < g.nodes.size(); ++j) {
+      const double v = 0.5 * (g.nodes[j] + 1.0);
+      const Vec3 x = (1 - u) * (1 - v) * p[0] + u * (1 - v) * p[1] + u * v * p[2] + (1 - u) * v * p[3];
+      const Vec3 du = (1 - v) * (p[1] - p[0]) + v * (p[2] - p[3]);
+      const Vec3 dv = (1 - u) * (p[3] - p[0]) + u * (p[2] - p[1]);
+      out.push_back({x, 0.25 * g.weights[i] * g.weights[j] * du.cross(dv).norm()});
+    }
+  }
+}
+
+// F(dA(x) -> polygon) by Lambert's contour formula, F = 1/(2 pi) sum_i gamma_i n.(R_i+1 x R_i)/|R_i+1 x R_i|
+// (Cohen & Wallace 1993, eq. 4.16), after clipping the polygon to the front of x's tangent plane.
+// point_to_polygon() computes the same to ~1e-13 by refining where the sum cancels; a solver needs
+// far less, and the raw sum keeps each point's factors to a closed surface summing to 1 to rounding.
+double lambert_factor(const Vec3& x, const Vec3& n, std::span<const Vec3> polygon) {
+  thread_local std::vector<Vec3> r, clipped;
+  thread_local std::vector<double> height;
+  const std::size_t k = polygon.size();
+  r.resize(k);
+  height.resize(k);
+  bool any_above = false, any_below = false;
+  for (std::size_t i = 0; i < k; ++i) {
+    r[i] = polygon[i] - x;
+    height[i] = n.dot(r[i]);
+    any_above |= height[i] > 0.0;
+    any_below |= height[i] < 0.0;
+  }
+  if (!any_above) return 0.0;
+  // Only the polygon's front emits: x must lie strictly in front of its plane.
+  if (!(newell_normal(r).dot(r[0]) < 0.0)) return 0.0;
+  std::span<const Vec3> q(r);
+  if (any_below) {
+    detail::clip_to_half_space(r, height, clipped);
+    if (clipped.size() < 3) return 0.0;
+    q = clipped;
+  }
+  double sum = 0.0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    const Vec3& a = q[i];
+    const Vec3& b = q[i + 1 == q.size() ? 0 : i + 1];
+    const Vec3 c = b.cross(a);
+    const double s = c.norm();
+    if (s > 0.0) sum += std::atan2(s, a.dot(b)) * n.dot(c) / s;
+  }
+  return sum / (2.0 * std::numbers::pi);
+}
+
+// (1/A) sum_k w_k F(dA_k -> source): fixed Gauss points on `receiver`, Lambert's formula to `source`.
+double contour_factor(std::span<const Vec3> receiver, std::span<const Vec3> source) {
+  thread_local std::vector<detail::WeightedPoint> points;
+  const Vec3 n = newell_normal(receiver).normalized();
+  receiver_points(receiver, n, points);
+  double sum = 0.0, area = 0.0;
+  for (const detail::WeightedPoint& p : points) {
+    sum += p.weight * lambert_factor(p.x, n, source);
+    area += p.weight;  // the weights' own sum, so that factors to a closed surface sum to 1 exactly
+  }
+  return area > 0.0 ? std::max(0.0, sum / area) : 0.0;
 }
 
 }  // namespace
 
 FormFactorEvaluator::FormFactorEvaluator(const Scene& scene, const Effects& effects, const Visibility* visibility,
-                                         int visibility_samples)
-    : scene_(scene), effects_(effects), visibility_(visibility), visibility_samples_(visibility_samples) {
+                                         int visibility_samples, FormFactorKernel kernel)
+    : scene_(scene),
+      effects_(effects),
+      visibility_(visibility),
+      visibility_samples_(visibility_samples),
+      kernel_(kernel) {
   assert(visibility_ != nullptr || !effects_.visibility);
   assert(visibility_samples_ > 0);
 }
@@ -56,31 +147,77 @@ FormFactorEstimate FormFactorEvaluator::estimate(std::span<const Vec3> receiver,
     return e;
   }
   if (effects_.visibility) {
-    // Visibility first: a fully hidden pair needs no kernel call.
-    const VisibilityEstimate v =
-        visibility_->estimate(receiver, receiver_patch, source, source_patch, visibility_samples_,
-                              pair_seed(receiver, receiver_patch, source, source_patch));
+    // Classify first: a fully hidden pair needs no kernel call, a fully visible one no samples.
+    const PairClass c = visibility_->classify(receiver, receiver_patch, source, source_patch);
     visibility_queries_.fetch_add(1, std::memory_order_relaxed);
-    e.visibility = v.fraction;
-    if (v.pair_class == PairClass::kFacingAway) {
+    if (c == PairClass::kFacingAway) {
       e.facing_away = true;
       e.visibility = 0.0;
       return e;
     }
-    if (v.fraction == 0.0 && v.pair_class == PairClass::kFullyHidden) return e;
-    const PairFormFactor f = polygon_to_polygon(receiver, source);
-    evaluations_.fetch_add(1, std::memory_order_relaxed);
+    if (c == PairClass::kFullyHidden) {
+      e.visibility = 0.0;
+      return e;
+    }
+    if (c == PairClass::kPartial) {
+      const auto [fraction, error] = weighted_visibility(receiver, receiver_patch, source, source_patch);
+      e.visibility = fraction;
+      e.error = error;
+    }
+    const PairFormFactor f = unoccluded(receiver, source);
     e.unoccluded = f.from_to;
-    e.value = f.from_to * v.fraction;
-    e.reverse = f.to_from * v.fraction;
-    e.error = f.from_to * v.error;
+    e.value = f.from_to * e.visibility;
+    e.reverse = f.to_from * e.visibility;
+    e.error *= f.from_to;
     return e;
   }
-  const PairFormFactor f = polygon_to_polygon(receiver, source);
-  evaluations_.fetch_add(1, std::memory_order_relaxed);
+  const PairFormFactor f = unoccluded(receiver, source);
   e.unoccluded = e.value = f.from_to;
   e.reverse = f.to_from;
   return e;
+}
+
+std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<const Vec3> receiver, int receiver_patch,
+                                                                  std::span<const Vec3> source,
+                                                                  int source_patch) const {
+  // Ray-traced form factors (Wallace, Elmquist & Haines 1989): the visible fraction weighted by the
+  // point-to-point kernel cos(theta_x) cos(theta_y) / r^2 over stratified point pairs, so that the
+  // near parts of a pair count as much as they contribute to F. The kernel is symmetric, so the
+  // fraction is the same in both directions and reciprocity is kept.
+  const std::uint64_t seed = pair_seed(scene_, receiver, receiver_patch, source, source_patch);
+  const int kx = std::max(1, static_cast<int>(std::lround(std::sqrt(double(visibility_samples_)))));
+  const int ky = std::max(1, (visibility_samples_ + kx - 1) / kx);
+  detail::Rng rx(detail::mix_seed(seed, 1)), ry(detail::mix_seed(seed, 2));
+  thread_local std::vector<Vec2> ux, uy;
+  detail::stratified_unit_square(kx, rx, &ux);
+  detail::stratified_unit_square(ky, ry, &uy);
+  const detail::PolygonSampler sx(receiver), sy(source);
+  const Vec3 nx = newell_normal(receiver).normalized(), ny = newell_normal(source).normalized();
+  double weight = 0.0, visible_weight = 0.0;
+  int visible = 0, count = 0;
+  for (const Vec2& a : ux) {
+    const Vec3 x = sx.point(a.x(), a.y());
+    for (const Vec2& b : uy) {
+      const Vec3 y = sy.point(b.x(), b.y());
+      const Vec3 d = y - x;
+      const double r2 = d.squaredNorm();
+      const double k = r2 > 0.0 ? std::max(0.0, nx.dot(d)) * std::max(0.0, -ny.dot(d)) / (r2 * r2) : 0.0;
+      const bool seen = !visibility_->segment_blocked(x, receiver_patch, y, source_patch);
+      weight += k;
+      visible_weight += seen ? k : 0.0;
+      visible += seen ? 1 : 0;
+      ++count;
+    }
+  }
+  const double error = detail::fraction_error(visible, count);
+  if (!(weight > 0.0)) return {count > 0 ? double(visible) / count : 1.0, error};
+  return {visible_weight / weight, error};
+}
+
+PairFormFactor FormFactorEvaluator::unoccluded(std::span<const Vec3> receiver, std::span<const Vec3> source) const {
+  evaluations_.fetch_add(1, std::memory_order_relaxed);
+  if (kernel_ == FormFactorKernel::kAnalytic) return polygon_to_polygon(receiver, source);
+  return {contour_factor(receiver, source), contour_factor(source, receiver)};
 }
 
 }  // namespace hrad

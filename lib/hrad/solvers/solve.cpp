@@ -50,6 +50,8 @@ void validate_options(const SolveOptions& o) {
   }
   if (o.effects != EffectsMode::kAuto && o.effects != EffectsMode::kAll)
     throw Error(fmt::format("--effects: unknown mode {}", static_cast<int>(o.effects)));
+  if (o.kernel != FormFactorKernel::kAnalytic && o.kernel != FormFactorKernel::kPointContour)
+    throw Error(fmt::format("--kernel: unknown kernel {}", static_cast<int>(o.kernel)));
   if (o.visibility_samples < 1)
     throw Error(fmt::format("--visibility-samples must be >= 1, got {}", o.visibility_samples));
   if (o.threads < 0) throw Error(fmt::format("--threads must be >= 0 (0 = all cores), got {}", o.threads));
@@ -116,6 +118,20 @@ LinearSolver parse_linear_solver(std::string_view text) {
   if (text == "jacobi") return LinearSolver::kJacobi;
   if (text == "gauss_seidel" || text == "gauss-seidel") return LinearSolver::kGaussSeidel;
   throw Error(fmt::format("--linear-solver must be lu, jacobi or gauss_seidel, got '{}'", text));
+}
+
+std::string_view to_string(FormFactorKernel kernel) {
+  switch (kernel) {
+    case FormFactorKernel::kAnalytic: return "analytic";
+    case FormFactorKernel::kPointContour: return "contour";
+  }
+  return "unknown";
+}
+
+FormFactorKernel parse_kernel(std::string_view text) {
+  if (text == "analytic") return FormFactorKernel::kAnalytic;
+  if (text == "contour") return FormFactorKernel::kPointContour;
+  throw Error(fmt::format("--kernel must be analytic or contour, got '{}'", text));
 }
 
 EffectsMode parse_effects_mode(std::string_view text) {

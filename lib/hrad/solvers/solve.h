@@ -13,6 +13,7 @@
 #include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
 #include "hrad/solvers/effects.h"
+#include "hrad/solvers/form_factor_evaluator.h"
 
 namespace hrad {
 
@@ -31,8 +32,8 @@ enum class LinearSolver {
 
 struct SolveOptions {
   Method method = Method::kHierarchical;
-  /// Full matrix and substructuring: largest element area (scene units squared); 0 = automatic
-  /// from the scene (about kAutoElements elements over the whole scene).
+  /// Full matrix and substructuring: largest element area (scene units squared); 0 = automatic:
+  /// total area / kAutoElements (uniform 1-to-4 splits then give 1 to 4 times that many elements).
   double max_area = 0.0;
   /// Substructuring: largest shooting-patch area; 0 = the input polygons are the patches.
   double patch_area = 0.0;
@@ -49,6 +50,8 @@ struct SolveOptions {
   int max_iterations = 10000;
   LinearSolver linear_solver = LinearSolver::kLu;
   EffectsMode effects = EffectsMode::kAuto;
+  /// The unoccluded form-factor kernel of every solver (see FormFactorKernel).
+  FormFactorKernel kernel = FormFactorKernel::kPointContour;
   /// Point pairs sampled per partially visible pair (the visibility oracle's `samples`).
   int visibility_samples = 16;
   /// Worker threads for the parallel phases; 0 = TBB's default (all cores).
@@ -57,8 +60,9 @@ struct SolveOptions {
   std::function<void(std::string_view)> progress;
 };
 
-/// Element count aimed at when max_area is automatic (full matrix and substructuring).
-inline constexpr double kAutoElements = 1000.0;
+/// Automatic max_area = total area / kAutoElements (full matrix and substructuring): 492 elements
+/// on the bundled Cornell box, a few seconds for the full matrix with visibility.
+inline constexpr double kAutoElements = 250.0;
 
 enum class Termination {
   kConverged,      ///< an iterative method met the tolerance
@@ -101,6 +105,9 @@ std::string_view to_string(Method method);
 std::string_view to_string(Termination termination);
 std::string_view to_string(LinearSolver solver);
 std::string_view to_string(EffectsMode mode);
+std::string_view to_string(FormFactorKernel kernel);
+/// Parses "analytic" | "contour"; throws hrad::Error naming --kernel otherwise.
+FormFactorKernel parse_kernel(std::string_view text);
 /// Parses "full" | "substructure" | "hierarchical"; throws hrad::Error naming --method otherwise.
 Method parse_method(std::string_view text);
 /// Parses "lu" | "jacobi" | "gauss_seidel" (or "gauss-seidel"); throws hrad::Error naming --linear-solver.
