@@ -1,5 +1,8 @@
 #include "hrad/io/solution_ply.h"
 
+#include <fstream>
+#include <iterator>
+
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <gtest/gtest.h>
@@ -117,6 +120,26 @@ TEST(SolutionPly, BadFilesAreErrorsNamingTheFile) {
                                 "property double radiosity_b\nend_header\n0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n"
                                 "3 0 1 2 1 1 1\n"),
                       "patch");
+}
+
+TEST(SolutionPly, TruncatedFilesAreErrorsNotHangs) {
+  // OpenMesh's reader alone loops without end on a header cut short; every cut must be an error.
+  test::TempDir dir;
+  const std::string path = dir.path("sol.ply");
+  write_solution_ply(path, small_solution(), 1.0);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (std::size_t cut : {std::size_t{0}, std::size_t{2}, std::size_t{60}, bytes.find("end_header") + 5,
+                          bytes.find("end_header") + 11, bytes.size() / 2, bytes.size() - 1}) {
+    const std::string cut_path = dir.write("cut.ply", bytes.substr(0, cut));
+    EXPECT_THROW(read_solution_ply(cut_path), Error) << "cut at " << cut << " of " << bytes.size();
+  }
+  // An ASCII body one record short is caught too.
+  expect_error_naming(dir.write("short.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n"),
+                      "truncated");
 }
 
 TEST(SolutionPly, InconsistentSolutionIsAnErrorAndLeavesNoFile) {

@@ -2,6 +2,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
@@ -37,6 +39,116 @@ void check_consistent(const std::string& path, const Solution& s) {
         fail(fmt::format("face {} has vertex index {} out of range", f, v));
     if (s.face_patch[f] < 0) fail(fmt::format("face {} has patch id {}", f, s.face_patch[f]));
   }
+}
+
+// OpenMesh's PLY reader loops without end (growing memory) on some truncated files, e.g. a
+// header cut before end_header. So the structure is checked here first: the header's syntax and
+// that the body holds every record the header announces.
+struct PlyProperty {
+  int size = 0;        ///< scalar size in bytes, or the list items' size
+  int count_size = 0;  ///< list count size in bytes; 0 for a scalar
+};
+struct PlyElement {
+  std::string name;
+  std::size_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+int ply_type_size(const std::string& t) {
+  if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+  if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+  if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32") return 4;
+  if (t == "double" || t == "float64") return 8;
+  return 0;
+}
+
+void check_ply_structure(const std::string& path, const std::string& bytes) {
+  auto fail = [&](const std::string& what) { throw Error(fmt::format("{}: not a readable PLY file: {}", path, what)); };
+  const std::size_t header_end = bytes.find("end_header");
+  if (bytes.rfind("ply", 0) != 0) fail("it does not start with 'ply'");
+  if (header_end == std::string::npos) fail("no end_header");
+  std::size_t body = bytes.find('\n', header_end);
+  if (body == std::string::npos) fail("nothing after end_header");
+  ++body;
+  std::istringstream header(bytes.substr(0, header_end));
+  std::string line, format;
+  std::vector<PlyElement> elements;
+  std::size_t line_no = 0;
+  while (std::getline(header, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    if (key == "format") {
+      std::string version;
+      words >> format >> version;
+    } else if (key == "element") {
+      PlyElement e;
+      long long count = -1;
+      if (!(words >> e.name >> count) || count < 0 || count > 2'000'000'000LL)
+        fail(fmt::format("header line {}: bad element line '{}'", line_no, line));
+      e.count = static_cast<std::size_t>(count);
+      elements.push_back(e);
+    } else if (key == "property") {
+      if (elements.empty()) fail(fmt::format("header line {}: property before any element", line_no));
+      std::string type;
+      words >> type;
+      PlyProperty prop;
+      if (type == "list") {
+        std::string count_type, item_type;
+        words >> count_type >> item_type;
+        prop.count_size = ply_type_size(count_type);
+        prop.size = ply_type_size(item_type);
+        if (prop.count_size == 0 || prop.size == 0) fail(fmt::format("header line {}: bad list type '{}'", line_no, line));
+      } else {
+        prop.size = ply_type_size(type);
+        if (prop.size == 0) fail(fmt::format("header line {}: unknown type in '{}'", line_no, line));
+      }
+      elements.back().properties.push_back(prop);
+    }
+  }
+  const bool ascii = format == "ascii";
+  const bool little = format == "binary_little_endian";
+  if (!ascii && !little && format != "binary_big_endian") fail(fmt::format("unknown format '{}'", format));
+
+  if (ascii) {  // count the tokens each record needs
+    std::istringstream in(bytes.substr(body));
+    std::string token;
+    for (const PlyElement& e : elements)
+      for (std::size_t r = 0; r < e.count; ++r)
+        for (const PlyProperty& prop : e.properties) {
+          if (!(in >> token)) fail(fmt::format("truncated in element '{}' record {}", e.name, r));
+          if (prop.count_size == 0) continue;
+          long long n = -1;
+          try {
+            n = std::stoll(token);
+          } catch (const std::exception&) {
+          }
+          if (n < 0 || n > 1'000'000) fail(fmt::format("bad list length '{}' in element '{}' record {}", token, e.name, r));
+          for (long long k = 0; k < n; ++k)
+            if (!(in >> token)) fail(fmt::format("truncated in element '{}' record {}", e.name, r));
+        }
+    return;
+  }
+  std::size_t at = body;
+  for (const PlyElement& e : elements)
+    for (std::size_t r = 0; r < e.count; ++r)
+      for (const PlyProperty& prop : e.properties) {
+        std::size_t n = 1;
+        if (prop.count_size != 0) {
+          if (at + prop.count_size > bytes.size()) fail(fmt::format("truncated in element '{}' record {}", e.name, r));
+          n = 0;
+          for (int k = 0; k < prop.count_size; ++k) {
+            const std::size_t byte = static_cast<unsigned char>(bytes[at + (little ? prop.count_size - 1 - k : k)]);
+            n = (n << 8) | byte;
+          }
+          if (n > 1'000'000) fail(fmt::format("bad list length {} in element '{}' record {}", n, e.name, r));
+          at += prop.count_size;
+        }
+        at += n * prop.size;
+        if (at > bytes.size()) fail(fmt::format("truncated in element '{}' record {}", e.name, r));
+      }
 }
 
 /// add_face without OpenMesh's "complex edge" message: the caller handles the failure.
@@ -105,8 +217,11 @@ void write_solution_ply(const std::string& path, const Solution& solution, doubl
 }
 
 Solution read_solution_ply(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path)) throw Error(fmt::format("{}: cannot open solution PLY", path));
+  std::ifstream file(path, std::ios::binary);
+  if (!file || std::filesystem::is_directory(path)) throw Error(fmt::format("{}: cannot open solution PLY", path));
+  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  check_ply_structure(path, bytes);
+  std::istringstream in(bytes);
   PlyMesh mesh;
   OpenMesh::IO::Options options = OpenMesh::IO::Options::Custom;
   if (!OpenMesh::IO::read_mesh(mesh, in, ".ply", options))
