@@ -368,10 +368,10 @@ bool CgalVisibility::blocked(const Point& a, int patch_a, const Point& b, int pa
 class ShaftTraversal {
  public:
   ShaftTraversal(const std::vector<Triangle>& triangles, const std::vector<int>& patch_of,
-                 std::span<const Facet> facets, std::span<const Point> shaft_points, int patch_a, int patch_b,
-                 std::vector<int>* hits)
-      : triangles_(triangles), patch_of_(patch_of), facets_(facets), pts_(shaft_points), pa_(patch_a), pb_(patch_b),
-        hits_(hits) {}
+                 std::span<const Facet> facets, std::span<const Point> shaft_points,
+                 std::span<const std::pair<Point, Point>> probes, int patch_a, int patch_b, std::vector<int>* hits)
+      : triangles_(triangles), patch_of_(patch_of), facets_(facets), pts_(shaft_points), probes_(probes),
+        pa_(patch_a), pb_(patch_b), hits_(hits) {}
   bool go_further() const { return true; }
   void intersection(const CGAL::Bbox_3&, const Primitive& primitive) {
     const int patch = patch_of_[primitive.id() - triangles_.begin()];
@@ -391,7 +391,7 @@ class ShaftTraversal {
     bool inside = true;
     for (const Facet& f : facets_)
       for (int k = 0; k < 3 && inside; ++k) inside = f.side(t[k]) == CGAL::POSITIVE;
-    if (!inside && !meets_interior_exactly(t)) return;  // touches the shaft's boundary only
+    if (!inside && !probe_segment_hits(t) && !meets_interior_exactly(t)) return;  // touches the boundary only
     hits_->push_back(patch);
   }
   template <class Node>
@@ -400,6 +400,18 @@ class ShaftTraversal {
   }
 
  private:
+  /// Sufficient and exact: some probe segment whose ends lie strictly inside the shaft crosses t
+  /// (its ends strictly on both sides of t's plane, the crossing in closed t), so t meets the
+  /// interior. The probes are rounded points near the shaft's vertex pairs; a probe end that is
+  /// not strictly inside (the exact facet test) is not used.
+  bool probe_segment_hits(const Triangle& t) const {
+    for (const auto& [u, v] : probes_) {
+      const CGAL::Orientation ou = CGAL::orientation(t[0], t[1], t[2], u);
+      const CGAL::Orientation ov = CGAL::orientation(t[0], t[1], t[2], v);
+      if (ou != CGAL::COPLANAR && ov == CGAL::opposite(ou) && crossing_inside(u, v, t)) return true;
+    }
+    return false;
+  }
   static Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
   bool meets_interior_exactly(const Triangle& t) const {
     std::vector<std::array<Vec3, 3>> planes;
@@ -412,6 +424,7 @@ class ShaftTraversal {
   const std::vector<int>& patch_of_;
   std::span<const Facet> facets_;
   std::span<const Point> pts_;
+  std::span<const std::pair<Point, Point>> probes_;
   int pa_, pb_;
   std::vector<int>* hits_;
 };
@@ -458,8 +471,27 @@ PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a
     const auto t = plane_triple(poly);
     if (t[0] >= 0) facets.push_back({poly[t[0]], poly[t[1]], poly[t[2]]});
   }
+  // Probe segments strictly inside the shaft, near each vertex pair (see probe_segment_hits).
+  auto mean = [](std::span<const Point> p) {
+    double x = 0, y = 0, z = 0;
+    for (const Point& q : p) x += q.x(), y += q.y(), z += q.z();
+    return Vec3(x, y, z) / double(p.size());
+  };
+  const Vec3 centre = 0.5 * (mean(a) + mean(b));
+  auto toward_centre = [&](const Point& p) {
+    return to_point(0.9 * Vec3(p.x(), p.y(), p.z()) + 0.1 * centre);
+  };
+  auto strictly_inside = [&](const Point& p) {
+    return std::all_of(facets.begin(), facets.end(), [&](const Facet& f) { return f.side(p) == CGAL::POSITIVE; });
+  };
+  std::vector<std::pair<Point, Point>> probes;
+  for (const Point& p : a)
+    for (const Point& q : b) {
+      const Point u = toward_centre(p), v = toward_centre(q);
+      if (strictly_inside(u) && strictly_inside(v)) probes.emplace_back(u, v);
+    }
   std::vector<int> hits;
-  ShaftTraversal traversal(triangles_, triangle_patch_, facets, pts, patch_a, patch_b, &hits);
+  ShaftTraversal traversal(triangles_, triangle_patch_, facets, pts, probes, patch_a, patch_b, &hits);
   if (!triangles_.empty()) tree_.traversal(bbox_of(pts), traversal);
   if (hits.empty()) return PairClass::kFullyVisible;
   std::sort(hits.begin(), hits.end());
