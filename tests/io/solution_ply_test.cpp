@@ -120,6 +120,14 @@ TEST(SolutionPly, BadFilesAreErrorsNamingTheFile) {
                                 "property double radiosity_b\nend_header\n0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n"
                                 "3 0 1 2 1 1 1\n"),
                       "patch");
+  expect_error_naming(dir.write("badindex.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                "property float z\nproperty double radiosity_r\nproperty double radiosity_g\n"
+                                "property double radiosity_b\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                "property double radiosity_r\nproperty double radiosity_g\nproperty double radiosity_b\n"
+                                "property int patch\nend_header\n0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n"
+                                "3 0 1 99 1 1 1 0\n"),
+                      "1 of 1 faces are invalid");
 }
 
 TEST(SolutionPly, TruncatedFilesAreErrorsNotHangs) {

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <sstream>
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
@@ -62,7 +63,8 @@ int ply_type_size(const std::string& t) {
   return 0;
 }
 
-void check_ply_structure(const std::string& path, const std::string& bytes) {
+/// Returns the header's element counts by name.
+std::map<std::string, std::size_t> check_ply_structure(const std::string& path, const std::string& bytes) {
   auto fail = [&](const std::string& what) { throw Error(fmt::format("{}: not a readable PLY file: {}", path, what)); };
   const std::size_t header_end = bytes.find("end_header");
   if (bytes.rfind("ply", 0) != 0) fail("it does not start with 'ply'");
@@ -108,6 +110,8 @@ void check_ply_structure(const std::string& path, const std::string& bytes) {
       elements.back().properties.push_back(prop);
     }
   }
+  std::map<std::string, std::size_t> counts;
+  for (const PlyElement& e : elements) counts[e.name] = e.count;
   const bool ascii = format == "ascii";
   const bool little = format == "binary_little_endian";
   if (!ascii && !little && format != "binary_big_endian") fail(fmt::format("unknown format '{}'", format));
@@ -129,7 +133,7 @@ void check_ply_structure(const std::string& path, const std::string& bytes) {
           for (long long k = 0; k < n; ++k)
             if (!(in >> token)) fail(fmt::format("truncated in element '{}' record {}", e.name, r));
         }
-    return;
+    return counts;
   }
   std::size_t at = body;
   for (const PlyElement& e : elements)
@@ -149,6 +153,7 @@ void check_ply_structure(const std::string& path, const std::string& bytes) {
         at += n * prop.size;
         if (at > bytes.size()) fail(fmt::format("truncated in element '{}' record {}", e.name, r));
       }
+  return counts;
 }
 
 /// add_face without OpenMesh's "complex edge" message: the caller handles the failure.
@@ -220,12 +225,19 @@ Solution read_solution_ply(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
   if (!file || std::filesystem::is_directory(path)) throw Error(fmt::format("{}: cannot open solution PLY", path));
   const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  check_ply_structure(path, bytes);
+  const std::map<std::string, std::size_t> counts = check_ply_structure(path, bytes);
   std::istringstream in(bytes);
   PlyMesh mesh;
   OpenMesh::IO::Options options = OpenMesh::IO::Options::Custom;
   if (!OpenMesh::IO::read_mesh(mesh, in, ".ply", options))
     throw Error(fmt::format("{}: not a readable PLY file", path));
+  if (counts.contains("face") && mesh.n_faces() != counts.at("face"))
+    throw Error(fmt::format("{}: {} of {} faces are invalid (vertex index out of range, repeated or non-manifold)", path,
+                            counts.at("face") - mesh.n_faces(), counts.at("face")));
+  if (counts.contains("vertex") && mesh.n_vertices() != counts.at("vertex"))
+    throw Error(fmt::format("{}: {} vertices read but the header announces {} (OpenMesh duplicated vertices of "
+                            "non-manifold faces)",
+                            path, mesh.n_vertices(), counts.at("vertex")));
 
   OpenMesh::VPropHandleT<double> vrad[3];
   OpenMesh::FPropHandleT<double> frad[3];
