@@ -10,5 +10,6 @@ void add_render_command(CLI::App& app);
 void add_solve_command(CLI::App& app);
 void add_formfactor_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
+void add_figures_command(CLI::App& app);
 
 }  // namespace hrad::cli

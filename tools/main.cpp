@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   hrad::cli::add_solve_command(app);
   hrad::cli::add_formfactor_command(app);
   hrad::cli::add_sweep_command(app);
+  hrad::cli::add_figures_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,236 @@
+// hrad figures --out DIR [--quick] [--scenes DIR] [--only LIST] [--threads N]
+//
+// The lecture's figures (Lischinski, "Hierarchical Radiosity"), measured. Each figure N is written as
+// DIR/figN_<name>.png with the CSV behind it, DIR/figN_<name>.csv:
+//   fig1_cost         form factors (links) against elements on the Cornell box: full n^2,
+//                     substructuring nN, hierarchical links (aeps varied at fixed feps); log-log
+//                     with the n^2 and n lines; fits in fig1_cost_fit.json
+//   fig2_edge         two surfaces meeting along an edge (two_surfaces_edge.obj): the hierarchical
+//                     element mesh (fig2_edge_mesh.png, links drawn when the solver records them)
+//                     and element size against distance to the common edge
+//   fig3_far          two surfaces far apart (two_far_surfaces.obj), k elements per surface: the
+//                     full matrix's k^2 pairs, substructuring's 2k factors, HR's links at the same
+//                     finest element size
+//   fig4_nbody        Barnes-Hut interactions per body against n for several theta, and n - 1
+//   fig5_convergence  largest relative change per iteration on the Cornell box: full (Jacobi),
+//                     substructuring, hierarchical
+//   fig6_equal_time   the Cornell box by each method at about the hierarchical solve's time, with
+//                     false-colour error images against a finer full-matrix LU reference
+//                     (fig6_<method>.png, fig6_<method>_error.png, montage fig6_equal_time.png)
+// plus DIR/headlines.json (the numbers the README quotes) and DIR/command.txt. Progress on stderr.
+//   --quick          small settings (for tests; well under a minute)
+//   --scenes DIR     where cornell_box.obj, two_surfaces_edge.obj, two_far_surfaces.obj are
+//                    (default notebooks_data/scenes)
+//   --only LIST      comma-separated figure numbers, e.g. 1,3 (default all)
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "commands.h"
+#include "hrad/core/error.h"
+#include "hrad/experiments/figures.h"
+#include "hrad/io/atomic_file.h"
+#include "hrad/io/obj_reader.h"
+#include "hrad/io/png_writer.h"
+#include "hrad/io/report_json.h"
+#include "hrad/render/render.h"
+#include "hrad/render/tone_map.h"
+#include "plot.h"
+
+namespace hrad::cli {
+namespace {
+
+std::set<int> parse_only(const std::string& text) {
+  std::set<int> only;
+  if (text.empty()) return {1, 2, 3, 4, 5, 6};
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    int n = 0;
+    try {
+      std::size_t used = 0;
+      n = std::stoi(item, &used);
+      if (used != item.size()) throw std::invalid_argument("trailing");
+    } catch (const std::exception&) {
+      throw Error(fmt::format("--only: expected figure numbers 1..6 separated by commas, got '{}'", text));
+    }
+    if (n < 1 || n > 6) throw Error(fmt::format("--only: figure {} does not exist (1..6)", n));
+    only.insert(n);
+  }
+  return only;
+}
+
+Scene load(const std::string& path) {
+  std::vector<std::string> warnings;
+  Scene scene = read_obj_scene(path, &warnings);
+  for (const auto& w : warnings) std::cerr << w << "\n";
+  return scene;
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  write_file_atomically(path, [&](std::ostream& o) { o << text; });
+}
+
+// A view of two surfaces meeting along an edge from the side both fronts face.
+Camera edge_camera(const Solution& s, int width, int height) {
+  const auto [lo, hi] = solution_bounds(s);
+  const Vec3 centre = 0.5 * (lo + hi);
+  const double radius = 0.5 * (hi - lo).norm();
+  Camera c;
+  c.target = centre;
+  c.position = centre + 2.6 * radius * Vec3(0.55, 0.6, 0.8).normalized();
+  c.up = Vec3::UnitY();
+  c.vfov_deg = 40.0;
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
+}  // namespace
+
+void add_figures_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("figures", "The lecture's figures, measured: PNG plots with the CSV behind each");
+  struct Args {
+    std::string out, scenes = "notebooks_data/scenes", only;
+    bool quick = false;
+    int threads = 0;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("--out", args->out, "Output folder")->required();
+  cmd->add_flag("--quick", args->quick, "Small, fast settings (for tests)");
+  cmd->add_option("--scenes", args->scenes, "Folder of the bundled scenes (default notebooks_data/scenes)");
+  cmd->add_option("--only", args->only, "Comma-separated figure numbers (default: all six)");
+  cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
+  cmd->callback([args] {
+    const std::set<int> only = parse_only(args->only);
+    if (args->threads < 0) throw Error(fmt::format("--threads must be >= 0, got {}", args->threads));
+    const std::string dir = args->out;
+    std::filesystem::create_directories(dir);
+    const bool quick = args->quick;
+    const int threads = args->threads;
+    const auto started = std::chrono::steady_clock::now();
+    const ProgressFn progress = [](std::string_view line) { std::cerr << "figures: " << line << "\n"; };
+    const auto scene_path = [&](const char* name) { return (std::filesystem::path(args->scenes) / name).string(); };
+    nlohmann::json headlines;
+    headlines["quick"] = quick;
+
+    if (only.count(1)) {
+      const Scene scene = load(scene_path("cornell_box.obj"));
+      CostOptions o;
+      o.threads = threads;
+      if (quick) {
+        o.element_counts = {32, 64, 128};
+        o.aeps_fractions = {1e-2, 3e-3, 1e-3};
+      }
+      const auto rows = cost_rows(scene, o, progress);
+      write_text(dir + "/fig1_cost.csv", cost_csv(rows));
+      const nlohmann::json fits = cost_fits(rows);
+      write_json_file(dir + "/fig1_cost_fit.json", fits);
+      run_plot("fig_cost.py", {dir + "/fig1_cost.csv", dir + "/fig1_cost.png", dir + "/fig1_cost_fit.json"});
+      for (const auto& [method, fit] : fits["methods"].items())
+        if (!fit.is_null()) headlines["fig1_links_slope"][method] = {{"b", fit["b"]}, {"b_stderr", fit["b_stderr"]}};
+    }
+
+    if (only.count(2)) {
+      const Scene scene = load(scene_path("two_surfaces_edge.obj"));
+      SolveOptions o;
+      o.threads = threads;
+      o.aeps = scene.total_area() * (quick ? 1e-3 : 1e-4);
+      progress(fmt::format("figure 2: hierarchical on {} (aeps {:.3g})", scene.path, o.aeps));
+      const EdgeFigure fig = edge_figure(scene, o);
+      write_text(dir + "/fig2_edge.csv", edge_csv(fig));
+      RenderOptions render;
+      render.camera = edge_camera(fig.solution, quick ? 384 : 768, quick ? 384 : 768);
+      render.exposure = auto_exposure(fig.solution);
+      render.cull_back_faces = false;
+      render.background = {255, 255, 255};
+      WireframeOptions wire;
+      wire.links = fig.solution.link_segments;
+      write_png(dir + "/fig2_edge_mesh.png", render_wireframe(fig.solution, render, wire));
+      run_plot("fig_edge.py", {dir + "/fig2_edge.csv", dir + "/fig2_edge.png", dir + "/fig2_edge_mesh.png",
+                               fmt::format("{} elements, {} links{}", fig.summary.elements, fig.summary.links,
+                                           fig.solution.link_segments.empty() ? " (links not recorded)" : "")});
+      headlines["fig2"] = {{"elements", fig.summary.elements}, {"links", fig.summary.links}, {"aeps", o.aeps},
+                           {"links_drawn", !fig.solution.link_segments.empty()}};
+    }
+
+    if (only.count(3)) {
+      const Scene scene = load(scene_path("two_far_surfaces.obj"));
+      const std::vector<int> ks = quick ? std::vector<int>{1, 4, 16, 64} : std::vector<int>{1, 4, 16, 64, 256, 1024};
+      const auto rows = far_rows(scene, ks, 0.0, threads, progress);
+      write_text(dir + "/fig3_far.csv", far_csv(rows));
+      run_plot("fig_far.py", {dir + "/fig3_far.csv", dir + "/fig3_far.png"});
+      for (const FarRow& r : rows)
+        if (r.k == ks.back()) headlines["fig3_at_largest_k"][r.method] = {{"k", r.k}, {"cross_pairs", r.cross_pairs},
+                                                                         {"cross_factors", r.cross_factors}};
+    }
+
+    if (only.count(4)) {
+      const std::vector<int> ns = quick ? std::vector<int>{64, 256, 1024}
+                                        : std::vector<int>{100, 300, 1000, 3000, 10000, 30000};
+      const std::vector<double> thetas = quick ? std::vector<double>{0.0, 0.5, 1.0}
+                                               : std::vector<double>{0.0, 0.3, 0.5, 0.7, 1.0};
+      progress("figure 4: Barnes-Hut");
+      const auto samples = barnes_hut_sweep(ns, thetas, 1, quick ? 1024 : 10000);
+      write_text(dir + "/fig4_nbody.csv", barnes_hut_csv(samples));
+      run_plot("fig_nbody.py", {dir + "/fig4_nbody.csv", dir + "/fig4_nbody.png"});
+      for (const BarnesHutSample& s : samples)
+        if (s.n == ns.back())
+          headlines["fig4_at_largest_n"][fmt::format("theta={:g}", s.theta)] = {
+              {"n", s.n}, {"mean_interactions", s.mean_interactions}, {"relative_force_error", s.relative_force_error}};
+    }
+
+    if (only.count(5)) {
+      const Scene scene = load(scene_path("cornell_box.obj"));
+      const auto runs = convergence_runs(scene, quick ? 64 : 256, 1e-6, threads, progress);
+      write_text(dir + "/fig5_convergence.csv", convergence_csv(runs));
+      run_plot("fig_convergence.py", {dir + "/fig5_convergence.csv", dir + "/fig5_convergence.png"});
+      for (const auto& r : runs)
+        headlines["fig5_iterations"][r.method] = {{"iterations", r.summary.iterations},
+                                                  {"termination", std::string(to_string(r.summary.termination))},
+                                                  {"elements", r.summary.elements}};
+    }
+
+    if (only.count(6)) {
+      const Scene scene = load(scene_path("cornell_box.obj"));
+      EqualTimeOptions o;
+      o.threads = threads;
+      o.reference_elements = quick ? 256 : 4096;
+      o.calibration_runs = quick ? 2 : 3;
+      if (quick) o.hierarchical.aeps = scene.total_area() * 1e-2;
+      const EqualTimeFigure fig = equal_time_figure(scene, o, progress);
+      const int size = quick ? 160 : 384;
+      const EqualTimeImages images = equal_time_images(scene, fig, size, size);
+      for (std::size_t i = 0; i < fig.runs.size(); ++i) {
+        write_png(fmt::format("{}/fig6_{}.png", dir, fig.runs[i].method), images.renders[i]);
+        write_png(fmt::format("{}/fig6_{}_error.png", dir, fig.runs[i].method), images.errors[i]);
+      }
+      write_text(dir + "/fig6_equal_time.csv", equal_time_csv(fig));
+      run_plot("fig_equal_time.py", {dir + "/fig6_equal_time.csv", dir + "/fig6_equal_time.png",
+                                     fmt::format("{:.3g}", images.error_hi)});
+      headlines["fig6_budget_seconds"] = fig.budget_seconds;
+      headlines["fig6_reference"] = {{"elements", fig.reference_summary.elements},
+                                     {"seconds", fig.reference_summary.total_seconds}};
+      for (const auto& r : fig.runs)
+        headlines["fig6"][r.method] = {{"elements", r.summary.elements}, {"seconds", r.summary.total_seconds},
+                                       {"error_l2", r.error.relative_l2}, {"error_linf", r.error.relative_linf}};
+    }
+
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    headlines["seconds"] = seconds;
+    if (!args->only.empty()) headlines["only"] = args->only;
+    write_json_file(dir + "/headlines.json", headlines);
+    write_text(dir + "/command.txt",
+               fmt::format("build/bin/hrad figures --out {}{}{}{}\n", dir, quick ? " --quick" : "",
+                           args->scenes != "notebooks_data/scenes" ? " --scenes " + args->scenes : "",
+                           args->only.empty() ? "" : " --only " + args->only));
+    std::cout << headlines.dump(2) << "\n";
+    std::cout << fmt::format("wrote the figures to {} in {:.1f} s\n", dir, seconds);
+  });
+}
+
+}  // namespace hrad::cli

@@ -1,0 +1,24 @@
+"""Figure 6: a 2 x 3 montage: the Cornell box by each method (top) and its error (bottom).
+`fig_equal_time.py fig6_equal_time.csv OUT.png ERROR_HI`; the images sit beside the CSV."""
+import os
+import sys
+
+import matplotlib.image as mpimg
+
+from common import plt, read_csv, save
+
+rows = [r for r in read_csv(sys.argv[1]) if r["method"] != "reference"]
+folder = os.path.dirname(os.path.abspath(sys.argv[1]))
+fig, axes = plt.subplots(2, len(rows), figsize=(4 * len(rows), 8.4), squeeze=False)
+for col, r in enumerate(rows):
+    top, bottom = axes[0][col], axes[1][col]
+    top.imshow(mpimg.imread(os.path.join(folder, r["image"])))
+    top.set_title("%s: %d elements, %.2f s" % (r["method"], r["elements"], r["seconds"]), fontsize=9)
+    bottom.imshow(mpimg.imread(os.path.join(folder, r["error_image"])))
+    bottom.set_title("relative L2 error %.3g (colour bar 0 to %s)" % (r["error_l2"], sys.argv[3]), fontsize=9)
+    for ax in (top, bottom):
+        ax.set_axis_off()
+budget = rows[0]["budget_seconds"] if rows else 0
+fig.suptitle("Equal time (about %.2f s, the hierarchical solve); error against a finer full-matrix reference" % budget)
+fig.tight_layout()
+save(fig, sys.argv[2])
