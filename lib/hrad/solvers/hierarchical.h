@@ -8,14 +8,22 @@
 // The links are solved by Jacobi iterations of gather (over links) and push-pull (over each tree)
 // until the largest relative change is below SolveOptions::tolerance. With --bfeps the links are
 // re-refined with the current radiosity after each solve (HSA sec. 4.2) until nothing changes.
+// Partly visible pairs refine further while F times the visibility error exceeds the tolerance;
+// pairs facing away or fully hidden get no link.
 //
-// Defaults (SolveOptions says 0 = automatic). All are unit-independent: factors are pure numbers,
-// bfeps is relative to the brightest emission, aeps to the scene's total area. They were chosen by
-// sweeps on the bundled scenes (cornell_box.obj in mm, simple_room.obj in m) and the closed-room
-// tests (tests/solvers/hierarchical_test.cpp): each is the coarsest setting that keeps
-//   * every element of a closed room with uniform E and rho = 0.9 within 1% of E / (1 - rho), and
-//   * every Cornell-box patch within a few percent of the full-matrix answer at its default,
-// while the Cornell box solves in about a second.
+// Defaults (SolveOptions: feps and bfeps 0 = unused, aeps 0 = automatic). Both are unit-
+// independent: feps is a pure number, aeps a fraction of the scene's total area. With neither
+// --feps nor --bfeps, feps = kAutoFeps. They were chosen by sweeps (feps 0.1 .. 0.001, aeps
+// total/20000 .. total/500) on cornell_box.obj (mm) and a closed 4 x 2.5 x 5 box:
+//   * feps 0.02, aeps total/2000 (the lecture's kind of setting): Cornell box in ~2 s, but a closed
+//     box at rho = 0.9 is 9% off on whole walls: an element inherits its ancestors' average factors
+//     (a corner element's sum to 1.24 instead of 1), and at rho = 0.9 that bias is amplified;
+//   * smaller aeps makes this worse (more corner elements linked through coarse ancestors) and
+//     costs more; smaller feps makes it better: feps 0.005 with aeps total/500 puts every wall of
+//     the box within 0.4% at rho = 0.9 (elements within 5%), and the Cornell box solves in ~2.5 s
+//     (2 cores) with every patch within 2% (of the brighter of the patch and the mean reflector
+//     radiosity) of the full matrix with similar elements (~500).
+// There is no automatic bfeps: B*F refinement (HSA sec. 4.2) is used when --bfeps is given.
 #pragma once
 
 #include "hrad/core/scene.h"
@@ -26,10 +34,6 @@ namespace hrad {
 
 /// Form-factor tolerance used when neither --feps nor --bfeps is given.
 inline constexpr double kAutoFeps = 0.005;
-/// B*F tolerance when only --bfeps mode is wanted with an automatic value: this fraction of the
-/// largest emission of any channel (not used unless SolveOptions::bfeps < 0 is ever allowed; kept
-/// for the report and the sweeps).
-inline constexpr double kAutoBfepsFraction = 0.002;
 /// Smallest element area when --aeps is 0: this fraction of the scene's total area.
 inline constexpr double kAutoAepsFraction = 1.0 / 500.0;
 /// BF refinement re-refines after each solve at most this many times (HSA sec. 4.2).
