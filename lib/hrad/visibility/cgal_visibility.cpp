@@ -129,20 +129,27 @@ bool any_strictly_in_front(std::span<const Point> poly, std::span<const Point> p
 /// non-negative side.
 struct Facet {
   Point p, q, r;
-  CGAL::Orientation side(const Point& x) const { return CGAL::orientation(p, q, r, x); }
+  CGAL::Orientation side(const Point& x) const {
+    // Shared vertices are common (neighbouring patches) and cost the predicate its exact fallback.
+    if (x == p || x == q || x == r) return CGAL::COPLANAR;
+    return CGAL::orientation(p, q, r, x);
+  }
 };
 
-/// The facet planes of conv(points) (with repeats when a facet holds more than three points);
-/// empty when the points are coplanar. O(n^4) in the number of points, which is small here.
-std::vector<Facet> hull_facets(std::span<const Point> pts) {
+/// The side facet planes of conv(A u B): those through points of both polygons (the planes of A
+/// and B themselves are added by the caller as front half-spaces). A facet found from several
+/// triples is kept once. Empty when all points are coplanar. O(n^4) in the few corners.
+std::vector<Facet> hull_facets(std::span<const Point> pts, std::size_t a_count) {
   std::vector<Facet> facets;
   const std::size_t n = pts.size();
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j)
       for (std::size_t k = j + 1; k < n; ++k) {
+        if (k < a_count || i >= a_count) continue;  // all from A or all from B: its own plane
         if (CGAL::collinear(pts[i], pts[j], pts[k])) continue;
         bool pos = false, neg = false;
         for (std::size_t m = 0; m < n && !(pos && neg); ++m) {
+          if (m == i || m == j || m == k) continue;
           const CGAL::Orientation o = CGAL::orientation(pts[i], pts[j], pts[k], pts[m]);
           pos |= o == CGAL::POSITIVE;
           neg |= o == CGAL::NEGATIVE;
@@ -462,7 +469,7 @@ PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a
   if (!any_strictly_in_front(b, a)) return PairClass::kFacingAway;
   std::vector<Point> pts(a.begin(), a.end());
   pts.insert(pts.end(), b.begin(), b.end());
-  std::vector<Facet> facets = hull_facets(pts);
+  std::vector<Facet> facets = hull_facets(pts, a.size());
   if (facets.empty()) return PairClass::kFacingAway;  // coplanar: no segment leaves the plane
   // Only mutually facing pairs matter (estimate() counts no other), and they join A' to B' (see
   // the top of this file): the closed front half-spaces of both planes bound their shaft too.
