@@ -170,9 +170,11 @@ const std::string kCornell = std::string(HRAD_SOURCE_DIR) + "/notebooks_data/sce
 
 // All ordered element pairs of the Cornell box at k x k elements per patch: the share of pairs the
 // classification settles without rays (facing away, fully visible, fully hidden).
-void BM_ClassifyCornell(benchmark::State& state) {
+void classify_cornell(benchmark::State& state, bool exact_contacts) {
   const Scene s = read_obj_scene(kCornell);
-  const auto v = make_visibility(s);
+  VisibilityOptions options;
+  options.exact_shaft_contacts = exact_contacts;
+  const auto v = make_visibility(s, options);
   const auto el = elements(s, static_cast<int>(state.range(0)));
   for (auto _ : state) {
     v->counters().reset();
@@ -193,7 +195,11 @@ void BM_ClassifyCornell(benchmark::State& state) {
   state.counters["partial"] = double(c.pairs_partial.load()) / pairs;
   state.counters["settled_of_facing"] = 1.0 - double(c.pairs_partial.load()) / facing;
 }
+void BM_ClassifyCornell(benchmark::State& state) { classify_cornell(state, true); }
 BENCHMARK(BM_ClassifyCornell)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
+// Without the exact settling of occluders that only touch the shaft.
+void BM_ClassifyCornellNoContacts(benchmark::State& state) { classify_cornell(state, false); }
+BENCHMARK(BM_ClassifyCornellNoContacts)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
 
 // Sampled estimates of the Cornell box's partial pairs (the rays a solver pays for).
 void BM_EstimatePartialCornell(benchmark::State& state) {

@@ -120,6 +120,9 @@ TEST(Classify, OccluderTouchingAShaftEdgeIsDecidedExactly) {
     add_patch(s, {{1.5 - shift, 0.5, 0.5}, {0.5 - shift, 1.5, 0.5}, {1.5, 1.5, 0.2}});
     const auto v = make_visibility(s);
     EXPECT_EQ(v->classify(kFloor, a, kCeiling, b), shift == 0.0 ? PairClass::kFullyVisible : PairClass::kPartial);
+    VisibilityOptions cheap;
+    cheap.exact_shaft_contacts = false;  // the contact is then left to sampling
+    EXPECT_EQ(make_visibility(s, cheap)->classify(kFloor, a, kCeiling, b), PairClass::kPartial);
   }
 }
 

@@ -376,9 +376,10 @@ class ShaftTraversal {
  public:
   ShaftTraversal(const std::vector<Triangle>& triangles, const std::vector<int>& patch_of,
                  std::span<const Facet> facets, std::span<const Point> shaft_points,
-                 std::span<const std::pair<Point, Point>> probes, int patch_a, int patch_b, std::vector<int>* hits)
+                 std::span<const std::pair<Point, Point>> probes, bool exact_contacts, int patch_a, int patch_b,
+                 std::vector<int>* hits)
       : triangles_(triangles), patch_of_(patch_of), facets_(facets), pts_(shaft_points), probes_(probes),
-        pa_(patch_a), pb_(patch_b), hits_(hits) {}
+        exact_contacts_(exact_contacts), pa_(patch_a), pb_(patch_b), hits_(hits) {}
   bool go_further() const { return true; }
   void intersection(const CGAL::Bbox_3&, const Primitive& primitive) {
     const int patch = patch_of_[primitive.id() - triangles_.begin()];
@@ -398,7 +399,7 @@ class ShaftTraversal {
     bool inside = true;
     for (const Facet& f : facets_)
       for (int k = 0; k < 3 && inside; ++k) inside = f.side(t[k]) == CGAL::POSITIVE;
-    if (!inside && !probe_segment_hits(t) && !meets_interior_exactly(t)) return;  // touches the boundary only
+    if (!inside && exact_contacts_ && !probe_segment_hits(t) && !meets_interior_exactly(t)) return;  // touches only
     hits_->push_back(patch);
   }
   template <class Node>
@@ -432,6 +433,7 @@ class ShaftTraversal {
   std::span<const Facet> facets_;
   std::span<const Point> pts_;
   std::span<const std::pair<Point, Point>> probes_;
+  bool exact_contacts_;
   int pa_, pb_;
   std::vector<int>* hits_;
 };
@@ -494,11 +496,13 @@ PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a
   std::vector<std::pair<Point, Point>> probes;
   for (const Point& p : a)
     for (const Point& q : b) {
+      if (!options_.exact_shaft_contacts) break;
       const Point u = toward_centre(p), v = toward_centre(q);
       if (strictly_inside(u) && strictly_inside(v)) probes.emplace_back(u, v);
     }
   std::vector<int> hits;
-  ShaftTraversal traversal(triangles_, triangle_patch_, facets, pts, probes, patch_a, patch_b, &hits);
+  ShaftTraversal traversal(triangles_, triangle_patch_, facets, pts, probes, options_.exact_shaft_contacts, patch_a,
+                           patch_b, &hits);
   if (!triangles_.empty()) tree_.traversal(bbox_of(pts), traversal);
   if (hits.empty()) return PairClass::kFullyVisible;
   std::sort(hits.begin(), hits.end());

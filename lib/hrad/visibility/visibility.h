@@ -84,6 +84,10 @@ struct VisibilityOptions {
   /// answers are identical; the compact one is faster (visibility_benchmark). Shaft queries
   /// always use CGAL's tree.
   bool cgal_tree_for_segments = false;
+  /// Occluders that only touch a pair's shaft (neighbouring walls, block faces on the floor) are
+  /// settled by exact rational clipping, so that such pairs are fully visible rather than partial.
+  /// Off: they count as partial and sampling decides (cheaper per pair, more rays).
+  bool exact_shaft_contacts = true;
 };
 std::unique_ptr<Visibility> make_visibility(const Scene& scene, const VisibilityOptions& options);
 
