@@ -30,7 +30,7 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kRelTol = 1e-13;
-constexpr int kMaxPieces = 2000;
+constexpr int kMaxPieces = 2000;  // grazing polygons never get accurate pieces: bound the cost
 
 struct LambertSum {
   double value;
