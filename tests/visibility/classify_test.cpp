@@ -118,11 +118,12 @@ TEST(Classify, OccluderTouchingAShaftEdgeIsDecidedExactly) {
     Scene s = empty_scene();
     const int a = add_patch(s, kFloor), b = add_patch(s, kCeiling);
     add_patch(s, {{1.5 - shift, 0.5, 0.5}, {0.5 - shift, 1.5, 0.5}, {1.5, 1.5, 0.2}});
-    const auto v = make_visibility(s);
-    EXPECT_EQ(v->classify(kFloor, a, kCeiling, b), shift == 0.0 ? PairClass::kFullyVisible : PairClass::kPartial);
-    VisibilityOptions cheap;
-    cheap.exact_shaft_contacts = false;  // the contact is then left to sampling
-    EXPECT_EQ(make_visibility(s, cheap)->classify(kFloor, a, kCeiling, b), PairClass::kPartial);
+    VisibilityOptions exact;
+    exact.exact_shaft_contacts = true;
+    EXPECT_EQ(make_visibility(s, exact)->classify(kFloor, a, kCeiling, b),
+              shift == 0.0 ? PairClass::kFullyVisible : PairClass::kPartial);
+    // By default the contact is left to sampling.
+    EXPECT_EQ(make_visibility(s)->classify(kFloor, a, kCeiling, b), PairClass::kPartial);
   }
 }
 

@@ -21,8 +21,9 @@
 // can hide a set of facing pairs of positive measure only if T meets the shaft's interior:
 //   * T is left out when a facet plane of the shaft, or T's own plane, weakly separates them;
 //   * T surely meets the interior when its vertices lie strictly inside every facet plane;
-//   * otherwise T is clipped to the shaft in exact rational arithmetic (shaft_exact.h): it
-//     misses the interior iff what is left lies in one bounding plane.
+//   * otherwise, with VisibilityOptions::exact_shaft_contacts, T is clipped to the shaft in exact
+//     rational arithmetic (shaft_exact.h): it misses the interior iff what is left lies in one
+//     bounding plane; without, the pair is conservatively partial and sampling decides.
 // A pair is fully hidden when one convex planar patch separates A from B strictly and every
 // segment between a vertex of A and a vertex of B meets it: the segments between two convex
 // polygons cross a plane that separates them inside the convex hull of the vertex-pair
