@@ -69,7 +69,7 @@ std::vector<CostRow> cost_rows(const Scene& scene, const CostOptions& options, c
   const double area = scene.total_area();
   std::vector<std::pair<std::string, SolveOptions>> settings;
   for (Method m : {Method::kFull, Method::kSubstructure})
-    for (double n : options.element_counts) {
+    for (double n : m == Method::kFull ? options.element_counts : options.substructure_counts) {
       SolveOptions o = options_for(m, options.threads);
       o.max_area = area / n;
       settings.push_back({"max_area", o});
@@ -279,7 +279,7 @@ EqualTimeFigure equal_time_figure(const Scene& scene, const EqualTimeOptions& op
   // substructuring ~ n N), starting from a small mesh; the run closest to the budget (in log time) is kept.
   for (Method m : {Method::kFull, Method::kSubstructure}) {
     const double exponent = m == Method::kFull ? 2.0 : 1.0;
-    double n = 64.0;
+    double n = options.first_elements;
     EqualTimeRun best;
     double best_miss = INFINITY;
     for (int c = 0; c < std::max(1, options.calibration_runs); ++c) {
