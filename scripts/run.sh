@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
-# The main job: installs what is missing, builds (Release), solves the bundled Cornell box and
-# writes out/cornell_box.png, out/cornell_box.ply and out/cornell_box.json, then prints a summary.
+# The main job: installs what is missing, builds (Release), solves the bundled Cornell box with
+# hierarchical radiosity and writes out/cornell_box.ply (leaf mesh, vertex colours, per-element
+# radiosity), out/cornell_box.json (the solve report) and out/cornell_box.png (a rendering), then
+# prints a summary.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
 scene=notebooks_data/scenes/cornell_box.obj
 mkdir -p out
 build/bin/hrad info "$scene"
-build/bin/hrad info "$scene" --json > out/cornell_box.scene.json.tmp && mv out/cornell_box.scene.json.tmp out/cornell_box.scene.json
+build/bin/hrad solve "$scene" --method hierarchical --report out/cornell_box.json --out out/cornell_box.ply
+build/bin/hrad render out/cornell_box.ply --out out/cornell_box.png
+echo "wrote out/cornell_box.png, out/cornell_box.ply, out/cornell_box.json"

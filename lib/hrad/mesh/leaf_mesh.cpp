@@ -106,11 +106,14 @@ class PointGrid {
   std::unordered_map<Key, std::vector<int>, KeyHash> cells_;
 };
 
-// Patches lying in one plane with the same front share vertices; others get their own copies.
+// Patches lying in one plane with the same front and the same material share vertices; others get
+// their own copies. A change of material is a discontinuity of radiosity (the light set into the
+// Cornell box ceiling): averaging across it would smear the emitter into its neighbours' vertices.
 std::vector<int> plane_groups(const std::vector<ElementNode>& roots, double tol) {
   struct Plane {
     Vec3 normal;
     double offset;
+    Rgb emission, reflectance;
   };
   std::vector<Plane> planes;
   std::vector<int> group(roots.size(), -1);
@@ -118,14 +121,15 @@ std::vector<int> plane_groups(const std::vector<ElementNode>& roots, double tol)
     const Vec3 n = newell_normal(roots[p].polygon()).normalized();
     const double offset = n.dot(roots[p].vertices[0]);
     for (std::size_t g = 0; g < planes.size(); ++g) {
-      if ((planes[g].normal - n).norm() <= 1e-9 && std::abs(planes[g].offset - offset) <= tol) {
+      if ((planes[g].normal - n).norm() <= 1e-9 && std::abs(planes[g].offset - offset) <= tol &&
+          (planes[g].emission == roots[p].emission).all() && (planes[g].reflectance == roots[p].reflectance).all()) {
         group[p] = static_cast<int>(g);
         break;
       }
     }
     if (group[p] < 0) {
       group[p] = static_cast<int>(planes.size());
-      planes.push_back({n, offset});
+      planes.push_back({n, offset, roots[p].emission, roots[p].reflectance});
     }
   }
   return group;
