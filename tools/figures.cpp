@@ -248,12 +248,12 @@ void add_figures_command(CLI::App& app) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     headlines["seconds"] = seconds;
     if (!args->only.empty()) headlines["only"] = args->only;
+    for (const auto& [figure, seconds] : figure_seconds.items()) headlines["figure_seconds"][figure] = seconds;
     write_json_file(dir + "/headlines.json", headlines);
     write_text(dir + "/command.txt",
                fmt::format("build/bin/hrad figures --out {}{}{}{}\n", dir, quick ? " --quick" : "",
                            args->scenes != "notebooks_data/scenes" ? " --scenes " + args->scenes : "",
                            args->only.empty() ? "" : " --only " + args->only));
-    for (const auto& [figure, seconds] : figure_seconds.items()) headlines["figure_seconds"][figure] = seconds;
     std::cout << headlines.dump(2) << "\n";
     std::cout << fmt::format("wrote the figures to {} in {:.1f} s\n", dir, seconds);
   });
