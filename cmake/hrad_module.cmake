@@ -17,7 +17,8 @@ function(hrad_module name)
 endfunction()
 
 # hrad_test(NAME DEPS ... [LABELS ...]): one GoogleTest executable NAME_test from the
-# *_test.cpp files of the calling folder, registered with CTest, labelled by LABELS.
+# *_test.cpp files of the calling folder, registered with CTest, labelled `unit`, or by LABELS
+# instead when given (one label: gtest_discover_tests does not carry a list through).
 function(hrad_test name)
   cmake_parse_arguments(ARG "" "" "DEPS;LABELS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cpp)
@@ -25,7 +26,10 @@ function(hrad_test name)
   target_link_libraries(${name}_test PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
   target_compile_definitions(${name}_test PRIVATE
     HRAD_SOURCE_DIR="${PROJECT_SOURCE_DIR}" HRAD_BINARY_DIR="${PROJECT_BINARY_DIR}")
-  set(labels unit ${ARG_LABELS})
+  set(labels unit)
+  if(ARG_LABELS)
+    set(labels ${ARG_LABELS})
+  endif()
   gtest_discover_tests(${name}_test
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
     PROPERTIES LABELS "${labels}"

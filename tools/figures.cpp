@@ -36,7 +36,7 @@
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/obj_reader.h"
 #include "hrad/io/png_writer.h"
-#include "hrad/io/report_json.h"
+#include "hrad/report/report_json.h"
 #include "hrad/render/render.h"
 #include "hrad/render/tone_map.h"
 #include "plot.h"
@@ -160,6 +160,7 @@ void add_figures_command(CLI::App& app) {
       // elements of size ~ sqrt(feps pi) d, so sizes grow in proportion to d down to aeps.
       o.feps = 0.05;
       o.aeps = scene.total_area() * (quick ? 1e-3 : 1e-4);
+      o.record_links = true;
       progress(fmt::format("figure 2: hierarchical on {} (aeps {:.3g})", scene.path, o.aeps));
       const EdgeFigure fig = edge_figure(scene, o);
       write_text(dir + "/fig2_edge.csv", edge_csv(fig));

@@ -23,7 +23,7 @@
 //                          polygon-to-polygon, ~1e-13, much slower)
 //   --visibility-samples K point pairs per partially visible pair (default 16)
 //   --threads N            worker threads (default: all cores)
-//   --report R.json        the solve report (see lib/hrad/io/report_json.h)
+//   --report R.json        the solve report (see lib/hrad/report/report_json.h)
 //   --out S.ply            the leaf mesh with tone-mapped vertex colours and per-face radiosity
 //   --exposure X           vertex-colour exposure for --out (default: automatic, emitters excluded)
 //   --quiet                no progress on stderr
@@ -37,7 +37,7 @@
 #include "commands.h"
 #include "hrad/core/error.h"
 #include "hrad/io/obj_reader.h"
-#include "hrad/io/report_json.h"
+#include "hrad/report/report_json.h"
 #include "hrad/io/solution_ply.h"
 #include "hrad/render/tone_map.h"
 #include "hrad/solvers/solve.h"

@@ -25,7 +25,7 @@
 #include "hrad/experiments/sweep.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/obj_reader.h"
-#include "hrad/io/report_json.h"
+#include "hrad/report/report_json.h"
 #include "plot.h"
 #include "progress_bar.h"
 

@@ -1,5 +1,7 @@
 #include "hrad/solvers/hierarchical.h"
 
+#include "hrad/geometry/polygon.h"
+
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -146,7 +148,15 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   figures["link_pairs"] = static_cast<double>(pairs.size());
   figures["min_element_area"] = min_area;
   figures["max_depth"] = max_depth;
-  return ctx.finish(h, links.size(), out);
+  SolveSummary summary = ctx.finish(h, links.size(), out);
+  if (out != nullptr && options.record_links) {
+    // One segment per link pair, between the elements' centroids (for figures of the links).
+    out->link_segments.clear();
+    out->link_segments.reserve(pairs.size());
+    for (const detail::LinkPair& pair : pairs)
+      out->link_segments.emplace_back(polygon_centroid(h.node(pair.p).polygon()), polygon_centroid(h.node(pair.q).polygon()));
+  }
+  return summary;
 }
 
 }  // namespace hrad

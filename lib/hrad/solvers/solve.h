@@ -54,6 +54,9 @@ struct SolveOptions {
   FormFactorKernel kernel = FormFactorKernel::kPointContour;
   /// Point pairs sampled per partially visible pair (the visibility oracle's `samples`).
   int visibility_samples = 16;
+  /// Hierarchical: also return each link pair as a segment between element centroids
+  /// (Solution::link_segments), for figures.
+  bool record_links = false;
   /// Worker threads for the parallel phases; 0 = TBB's default (all cores).
   int threads = 0;
   /// Called with one line of progress for long phases (the CLI prints it on stderr); may be empty.

@@ -1,4 +1,4 @@
-#include "hrad/io/report_json.h"
+#include "hrad/report/report_json.h"
 
 #include "hrad/geometry/polygon.h"
 #include "hrad/io/atomic_file.h"
