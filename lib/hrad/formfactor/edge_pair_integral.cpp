@@ -120,7 +120,10 @@ double panels(const SkewPair& e, double lo, double hi, double min_length) {
   const double len = hi - lo;
   const double need = rho > 1.0 ? kLogTarget / std::log(rho) : INFINITY;
   if (need <= kMaxOrder || len <= min_length)
-    return gauss(e, lo, hi, std::clamp(static_cast<int>(std::ceil(need)), kMinOrder, kMaxOrder));
+    // Clamp before the cast: `need` is infinite when a singularity lies on a panel already at the
+    // minimum length (found by the polygon-pair fuzzer: a cast of inf to int is undefined).
+    return gauss(e, lo, hi,
+                 static_cast<int>(std::clamp(std::ceil(need), double(kMinOrder), double(kMaxOrder))));
   // Split at the singularity's abscissa when it lies well inside, else grade towards the end.
   const double x = e.singular[worst].real();
   double split;
