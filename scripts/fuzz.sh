@@ -7,10 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
-if ! command -v clang++-14 >/dev/null; then
-  echo "fuzz: clang++-14 not installed; skipping (apt-get install clang-14 libclang-rt-14-dev)" >&2
-  exit 0
-fi
+scripts/install_deps.sh --with-fuzzing
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
   for f in tests/fuzz/*_fuzzer.cpp; do targets+=("$(basename "$f" .cpp)"); done

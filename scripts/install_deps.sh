@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what hrad needs from Debian bookworm's packages, and does nothing when all is there.
-# Usage: scripts/install_deps.sh [--with-notebooks]
+# Usage: scripts/install_deps.sh [--with-notebooks] [--with-fuzzing]
 set -euo pipefail
 
 packages=(
@@ -15,9 +15,13 @@ packages=(
   # plots written by `hrad sweep` and `hrad figures`
   python3 python3-matplotlib python3-numpy
 )
-if [[ "${1:-}" == "--with-notebooks" ]]; then
-  packages+=(python3-pandas jupyter-nbconvert python3-ipykernel)
-fi
+for option in "$@"; do
+  case "$option" in
+    --with-notebooks) packages+=(python3-pandas jupyter-nbconvert python3-ipykernel) ;;
+    --with-fuzzing) packages+=(clang-14 libclang-rt-14-dev) ;;
+    *) echo "install_deps: unknown option $option" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do
