@@ -13,6 +13,7 @@
 
 #include "hrad/geometry/polygon.h"
 #include "hrad/io/obj_reader.h"
+#include "solver_test_scenes.h"
 #include "hrad/solvers/solve.h"
 
 namespace hrad {
@@ -20,19 +21,7 @@ namespace {
 
 std::string scene_path(const std::string& name) { return std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/" + name; }
 
-// Adds a planar convex polygon, reordered if needed so that its front faces `towards`.
-void add_patch(Scene& s, std::vector<Vec3> poly, const Vec3& towards, int material) {
-  if (newell_normal(poly).dot(towards) < 0.0) std::reverse(poly.begin(), poly.end());
-  Patch p;
-  p.vertices = poly;
-  p.normal = newell_normal(poly).normalized();
-  p.area = polygon_area(poly);
-  p.material = material;
-  p.face = static_cast<int>(s.faces.size());
-  p.group = "g" + std::to_string(p.face);
-  s.faces.push_back({p.group, material, 0, p.area, {static_cast<int>(s.patches.size())}});
-  s.patches.push_back(p);
-}
+using test::add_polygon;
 
 // The six inward-facing walls of the box [0,a] x [0,b] x [0,c]; wall k uses materials[k].
 Scene make_box(double a, double b, double c, const std::vector<Material>& materials) {
@@ -41,7 +30,7 @@ Scene make_box(double a, double b, double c, const std::vector<Material>& materi
   auto m = [&](int k) { return std::min<int>(k, static_cast<int>(materials.size()) - 1); };
   const Vec3 centre(a / 2, b / 2, c / 2);
   auto wall = [&](std::vector<Vec3> v, int k) {
-    add_patch(s, v, centre - polygon_centroid(v), m(k));
+    add_polygon(s, v, centre - polygon_centroid(v), m(k));
   };
   wall({{0, 0, 0}, {a, 0, 0}, {a, 0, c}, {0, 0, c}}, 0);  // floor
   wall({{0, b, 0}, {a, b, 0}, {a, b, c}, {0, b, c}}, 1);  // ceiling
@@ -68,7 +57,7 @@ Scene make_faceted_sphere(double r, int rings, int sectors, const Material& wall
       if (i == 0) v = {point(0, 0), point(1, j), point(1, j + 1)};
       else if (i == rings - 1) v = {point(i, j), point(i, j + 1), point(rings, 0)};
       else v = {point(i, j), point(i, j + 1), point(i + 1, j + 1), point(i + 1, j)};
-      add_patch(s, v, -polygon_centroid(v), i == 0 ? 1 : 0);
+      add_polygon(s, v, -polygon_centroid(v), i == 0 ? 1 : 0);
     }
   }
   return s;
@@ -165,7 +154,7 @@ TEST(Hierarchical, ClosedBoxWithAFloatingBlockNeedsVisibility) {
   const int faces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 2, 6, 7}, {0, 3, 7, 4}, {1, 2, 6, 5}};
   for (const auto& f : faces) {
     std::vector<Vec3> v = {corners[f[0]], corners[f[1]], corners[f[2]], corners[f[3]]};
-    add_patch(s, v, polygon_centroid(v) - c, 0);  // the cube's faces face outward
+    add_polygon(s, v, polygon_centroid(v) - c, 0);  // the cube's faces face outward
   }
   Solution sol;
   const SolveSummary sum = solve_hr(s, &sol);
