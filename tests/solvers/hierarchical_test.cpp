@@ -22,6 +22,8 @@ namespace {
 std::string scene_path(const std::string& name) { return std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/" + name; }
 
 using test::add_polygon;
+using test::make_faceted_sphere;
+using test::scaled;
 
 // The six inward-facing walls of the box [0,a] x [0,b] x [0,c]; wall k uses materials[k].
 Scene make_box(double a, double b, double c, const std::vector<Material>& materials) {
@@ -41,44 +43,12 @@ Scene make_box(double a, double b, double c, const std::vector<Material>& materi
   return s;
 }
 
-// A sphere of radius r faceted by `rings` latitude bands and `sectors` longitudes (triangles at
-// the poles, planar trapezoids between), all facing the centre; the top cap uses material 1.
-Scene make_faceted_sphere(double r, int rings, int sectors, const Material& wall, const Material& cap) {
-  Scene s;
-  s.materials = {wall, cap};
-  auto point = [&](int i, int j) {
-    const double theta = std::numbers::pi * i / rings;
-    const double phi = 2 * std::numbers::pi * j / sectors;
-    return Vec3(r * std::sin(theta) * std::cos(phi), r * std::cos(theta), r * std::sin(theta) * std::sin(phi));
-  };
-  for (int i = 0; i < rings; ++i) {
-    for (int j = 0; j < sectors; ++j) {
-      std::vector<Vec3> v;
-      if (i == 0) v = {point(0, 0), point(1, j), point(1, j + 1)};
-      else if (i == rings - 1) v = {point(i, j), point(i, j + 1), point(rings, 0)};
-      else v = {point(i, j), point(i, j + 1), point(i + 1, j + 1), point(i + 1, j)};
-      add_polygon(s, v, -polygon_centroid(v), i == 0 ? 1 : 0);
-    }
-  }
-  return s;
-}
-
 Material gray(double rho, double e) { return {"m", Rgb::Constant(rho), Rgb::Constant(e)}; }
 
 double area_mean(const Scene& s, const Solution& sol, int channel) {
   double sum = 0.0;
   for (std::size_t i = 0; i < s.patches.size(); ++i) sum += s.patches[i].area * sol.patch_radiosity[i][channel];
   return sum / s.total_area();
-}
-
-// Scales every coordinate of the scene by `factor`.
-Scene scaled(Scene s, double factor) {
-  for (Patch& p : s.patches) {
-    for (Vec3& v : p.vertices) v *= factor;
-    p.area = polygon_area(p.vertices);
-  }
-  for (InputFace& f : s.faces) f.area *= factor * factor;
-  return s;
 }
 
 SolveSummary solve_hr(const Scene& s, Solution* sol, SolveOptions o = {}) {
