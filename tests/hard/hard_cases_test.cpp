@@ -250,7 +250,7 @@ TEST(HardCases, EmitterTouchingReceivers) {
 
 // A tiny emitter in a huge room: a 1 cm light 1 m below the ceiling of a 1 km box. Outcome: the walls
 // absorb the emitted power within 1e-5 (full, LU, analytic kernel; the light hides bits of the
-// ceiling, so sampled visibility enters); the hierarchical solver stays finite.
+// ceiling, so sampled visibility enters) and within 1% with the hierarchical solver.
 TEST(HardCases, TinyEmitterInHugeRoom) {
   const double L = 1000.0, t = 0.01;
   Scene s = make_box(L, L, L, {material(Rgb::Constant(0.5), Rgb::Zero()), material(Rgb::Zero(), Rgb::Constant(1e6))},
@@ -271,11 +271,19 @@ TEST(HardCases, TinyEmitterInHugeRoom) {
     absorbed += area * (1 - 0.5) / 0.5 * sol.face_radiosity[f][0];
   }
   EXPECT_NEAR(absorbed / emitted, 1.0, 1e-5);
-  // Known gap (README "Hard cases"): the hierarchical solver returns half the absorbed power in this
-  // scene; it is checked here only for finite values until that is found.
+  // The hierarchical solver once stopped after the direct light here (its convergence test divided
+  // by the light's radiosity, 1e6 against 1e-5 on the walls) and returned half the absorbed power.
   SolveOptions hr;
   hr.method = Method::kHierarchical;
-  solve_finite(s, hr);
+  const Solution h = solve_finite(s, hr);
+  double absorbed_hr = 0.0;
+  for (std::size_t f = 0; f < h.faces.size(); ++f) {
+    if (s.material_of(s.patches[h.face_patch[f]]).is_emitter()) continue;
+    std::vector<Vec3> poly;
+    for (int v : h.faces[f]) poly.push_back(h.vertices[v]);
+    absorbed_hr += polygon_area(poly) * (1 - 0.5) / 0.5 * h.face_radiosity[f][0];
+  }
+  EXPECT_NEAR(absorbed_hr / emitted, 1.0, 0.01);
 }
 
 // Non-planar and non-convex input faces: a closed box read from OBJ whose top is an L-shaped

@@ -101,7 +101,7 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
       case LinearSolver::kJacobi: {
         while (true) {
           Eigen::MatrixXd next = e + (rho.array() * (f * b).array()).matrix();
-          const double largest = next.cwiseAbs().maxCoeff();
+          const double largest = (next - e).cwiseAbs().maxCoeff();  // reflected part: see SolveOptions::tolerance
           const double change = (next - b).cwiseAbs().maxCoeff();
           b.swap(next);
           if (ctx.record_iteration(largest > 0.0 ? change / largest : (std::isfinite(change) ? 0.0 : NAN))) break;
@@ -115,7 +115,7 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
             for (int c = 0; c < channels; ++c) {
               const double value = e(i, c) + rho(i, c) * f.row(i).dot(b.col(c));
               change = std::max(change, std::abs(value - b(i, c)));
-              largest = std::max(largest, std::abs(value));
+              largest = std::max(largest, std::abs(value - e(i, c)));
               b(i, c) = value;
             }
           if (!std::isfinite(change) || !std::isfinite(largest)) change = NAN;

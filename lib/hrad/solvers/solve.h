@@ -44,7 +44,9 @@ struct SolveOptions {
   /// Hierarchical: smallest element area (HSA 1991 Aε, scene units squared); 0 = automatic.
   double aeps = 0.0;
   /// Iterations stop when the largest change of any element's radiosity (any channel), divided
-  /// by the largest radiosity, falls below this.
+  /// by the largest reflected radiosity B - E, falls below this. (Not by the largest B: a bright
+  /// emitter would then stop the iteration before any interreflection, e.g. after the direct light
+  /// when a 1 cm light sits in a 1 km room.)
   double tolerance = 1e-6;
   /// Iterative methods give up (Termination::kMaxIterations) after this many iterations.
   int max_iterations = 10000;

@@ -111,17 +111,6 @@ SolveSummary SolverContext::finish(const ElementHierarchy& hierarchy, std::size_
   return summary_;
 }
 
-double relative_change(std::span<const Rgb> before, std::span<const Rgb> after, int channels) {
-  double change = 0.0, largest = 0.0;
-  for (std::size_t i = 0; i < after.size(); ++i)
-    for (int c = 0; c < channels; ++c) {
-      change = std::max(change, std::abs(after[i][c] - before[i][c]));
-      largest = std::max(largest, std::abs(after[i][c]));
-    }
-  if (!std::isfinite(change) || !std::isfinite(largest)) return NAN;
-  return largest > 0.0 ? change / largest : 0.0;
-}
-
 std::size_t peak_memory_bytes() {
   std::ifstream status("/proc/self/status");
   std::string line;
@@ -151,7 +140,7 @@ Rgb push_pull_node(ElementHierarchy& h, NodeId id, const Rgb& down, int channels
     const Rgb b = n.emission + n.reflectance * total;
     for (int c = 0; c < channels; ++c) {
       *change = std::max(*change, std::abs(b[c] - n.radiosity[c]));
-      *largest = std::max(*largest, std::abs(b[c]));
+      *largest = std::max(*largest, std::abs(b[c] - n.emission[c]));
     }
     n.radiosity = b;
     return b;

@@ -100,8 +100,6 @@ class SolverContext {
   std::unique_ptr<ThreadLimit> thread_limit_;
 };
 
-/// Largest |a - b| over the given channels divided by the largest |b| (0 when b is all 0).
-double relative_change(std::span<const Rgb> before, std::span<const Rgb> after, int channels);
 
 /// Copies channel 0 into channels 1 and 2 (for gray scenes solved with one channel).
 inline void copy_gray(Rgb& value) { value[1] = value[2] = value[0]; }

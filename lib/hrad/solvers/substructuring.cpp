@@ -94,7 +94,7 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
           for (int c = 0; c < channels; ++c) {
             const double value = e.emission[c] + e.reflectance[c] * f.row(row).dot(patch_b.col(c));
             change = std::max(change, std::abs(value - e.radiosity[c]));
-            largest = std::max(largest, std::abs(value));
+            largest = std::max(largest, std::abs(value - e.emission[c]));
             e.radiosity[c] = value;
           }
           ++row;
