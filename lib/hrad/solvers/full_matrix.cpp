@@ -104,7 +104,7 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
           const double largest = (next - e).cwiseAbs().maxCoeff();  // reflected part: see SolveOptions::tolerance
           const double change = (next - b).cwiseAbs().maxCoeff();
           b.swap(next);
-          if (ctx.record_iteration(largest > 0.0 ? change / largest : (std::isfinite(change) ? 0.0 : NAN))) break;
+          if (ctx.record_iteration(stopping_change(change, largest))) break;
         }
         break;
       }
@@ -118,8 +118,7 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
               largest = std::max(largest, std::abs(value - e(i, c)));
               b(i, c) = value;
             }
-          if (!std::isfinite(change) || !std::isfinite(largest)) change = NAN;
-          if (ctx.record_iteration(largest > 0.0 ? change / largest : change)) break;
+          if (ctx.record_iteration(stopping_change(change, largest))) break;
         }
         break;
       }

@@ -111,6 +111,11 @@ SolveSummary SolverContext::finish(const ElementHierarchy& hierarchy, std::size_
   return summary_;
 }
 
+double stopping_change(double largest_change, double largest_reflected) {
+  if (!std::isfinite(largest_change) || !std::isfinite(largest_reflected)) return NAN;
+  return largest_reflected > 0.0 ? largest_change / largest_reflected : largest_change;
+}
+
 std::size_t peak_memory_bytes() {
   std::ifstream status("/proc/self/status");
   std::string line;
@@ -165,8 +170,7 @@ double push_pull(ElementHierarchy& hierarchy, int channels) {
   double change = 0.0, largest = 0.0;
   for (int p = 0; p < hierarchy.patch_count(); ++p)
     push_pull_node(hierarchy, hierarchy.root(p), Rgb::Zero(), channels, &change, &largest);
-  if (!std::isfinite(change) || !std::isfinite(largest)) return NAN;
-  return largest > 0.0 ? change / largest : 0.0;
+  return stopping_change(change, largest);
 }
 
 }  // namespace hrad

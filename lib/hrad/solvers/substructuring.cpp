@@ -101,8 +101,7 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
         }
         average(p);
       }
-      if (!std::isfinite(change) || !std::isfinite(largest)) change = NAN;
-      if (ctx.record_iteration(largest > 0.0 ? change / largest : change)) break;
+      if (ctx.record_iteration(stopping_change(change, largest))) break;
     }
   }
   if (channels == 1)
