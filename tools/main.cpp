@@ -1,6 +1,7 @@
 // hrad: hierarchical radiosity research toolkit, command-line front end.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -19,7 +20,20 @@ int main(int argc, char** argv) {
   hrad::cli::add_formfactor_command(app);
   hrad::cli::add_sweep_command(app);
   hrad::cli::add_figures_command(app);
+  hrad::cli::add_scene_command(app);
   try {
+    // CLI11 reports an unknown first word only as "A subcommand is required": name it instead.
+    const auto known_subcommand = [&app](const std::string& name) {
+      for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+        if (sub->check_name(name)) return true;
+      return false;
+    };
+    if (argc > 1 && argv[1][0] != '-' && !known_subcommand(argv[1])) {
+      std::string known;
+      for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+        known += (known.empty() ? "" : ", ") + sub->get_name();
+      throw hrad::Error(fmt::format("unknown subcommand '{}' (expected one of: {})", argv[1], known));
+    }
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -126,16 +127,23 @@ void add_render_command(CLI::App& app) {
       throw Error(fmt::format("--height: {} is not in [1, 16384]", args->height));
     if (cmd->count("--exposure") && !(args->exposure > 0.0 && std::isfinite(args->exposure)))
       throw Error(fmt::format("--exposure: {} is not a positive number", args->exposure));
-    const Solution solution = read_solution_ply(args->solution);
-    RenderOptions options;
-    options.camera = args->camera.empty() ? default_camera(solution, args->width, args->height)
-                                          : parse_camera(args->camera, args->width, args->height);
-    options.exposure = cmd->count("--exposure") ? args->exposure : auto_exposure(solution);
-    options.cull_back_faces = !args->both_sides;
+    // Every option is checked before any file is read.
     if (!args->reference.empty() && args->scene.empty()) throw Error("--scene: required with --reference");
     if (args->reference.empty() &&
         (!args->scene.empty() || !args->error_range.empty() || args->log_scale || args->include_emitters))
       throw Error("--reference: --scene, --error-range, --log and --include-emitters only apply to an error image");
+    std::optional<Camera> camera;
+    if (!args->camera.empty()) camera = parse_camera(args->camera, args->width, args->height);
+    std::optional<std::pair<double, double>> error_range;
+    if (!args->error_range.empty()) error_range = parse_range(args->error_range);
+    if (args->log_scale && error_range && !(error_range->first > 0.0))
+      throw Error("--error-range: LO must be positive with --log");
+
+    const Solution solution = read_solution_ply(args->solution);
+    RenderOptions options;
+    options.camera = camera ? *camera : default_camera(solution, args->width, args->height);
+    options.exposure = cmd->count("--exposure") ? args->exposure : auto_exposure(solution);
+    options.cull_back_faces = !args->both_sides;
     Image image;
     if (!args->reference.empty()) {
       const Scene scene = read_obj_scene(args->scene);
@@ -152,8 +160,8 @@ void add_render_command(CLI::App& app) {
                                                      args->include_emitters ? Emitters::include : Emitters::exclude);
       FalseColourOptions colours;
       colours.log_scale = args->log_scale;
-      if (!args->error_range.empty()) {
-        std::tie(colours.lo, colours.hi) = parse_range(args->error_range);
+      if (error_range) {
+        std::tie(colours.lo, colours.hi) = *error_range;
       } else {
         // The 95th percentile by area: a few elements where the reference is nearly black (under
         // the Cornell blocks, say) have huge relative errors and would wash out the rest.

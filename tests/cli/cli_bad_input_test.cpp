@@ -1,0 +1,113 @@
+// Bad input to every subcommand (issue 7): a clear one-line error on stderr naming the file, line,
+// pair or option, a non-zero exit, no crash, and no output file left behind. Option errors come
+// before any work: stderr holds the error line only (no progress).
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include "run_hrad.h"
+
+namespace hrad::test {
+namespace {
+
+struct BadInput {
+  std::string name;
+  std::map<std::string, std::string> files;  ///< written into the scratch folder first
+  std::string args;                           ///< "{d}" is replaced by the scratch folder
+  std::string expected;                       ///< must appear in the error line
+};
+
+std::ostream& operator<<(std::ostream& o, const BadInput& c) { return o << c.name; }
+
+std::string replace_all(std::string text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+  return text;
+}
+
+const std::string kScene = "notebooks_data/scenes/two_far_surfaces.obj";
+const std::string kSquares = R"({"pairs": [{"name": "a", "from": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]],
+                                            "to": [[0,0,1],[0,1,1],[1,1,1],[1,0,1]]}]})";
+
+const BadInput kCases[] = {
+    {"no_subcommand", {}, "", "subcommand"},
+    {"unknown_subcommand", {}, "frobnicate", "frobnicate"},
+    {"unknown_option", {}, "solve " + kScene + " --frobnicate 3", "--frobnicate"},
+    {"info_missing_file", {}, "info {d}/missing.obj", "missing.obj"},
+    {"info_bad_vertex", {{"bad.obj", "v 0 0 0\nv 1 0 0\nv 1 oops 0\nf 1 2 3\n"}}, "info {d}/bad.obj", "bad.obj:3"},
+    {"info_bad_face_index", {{"bad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 7\n"}}, "info {d}/bad.obj", "bad.obj:4"},
+    {"solve_unknown_method", {}, "solve " + kScene + " --method magic --out {d}/s.ply --report {d}/r.json", "--method"},
+    {"solve_nan_feps", {}, "solve " + kScene + " --feps nan --out {d}/s.ply", "--feps"},
+    {"solve_text_feps", {}, "solve " + kScene + " --feps abc --out {d}/s.ply", "--feps"},
+    {"solve_negative_aeps", {}, "solve " + kScene + " --aeps -1 --out {d}/s.ply", "--aeps"},
+    {"solve_negative_bfeps", {}, "solve " + kScene + " --bfeps -0.1 --out {d}/s.ply", "--bfeps"},
+    {"solve_zero_tolerance", {}, "solve " + kScene + " --tolerance 0 --out {d}/s.ply", "--tolerance"},
+    {"solve_negative_max_area", {}, "solve " + kScene + " --method full --max-area -2 --out {d}/s.ply", "--max-area"},
+    {"solve_inf_patch_area", {}, "solve " + kScene + " --method substructure --patch-area inf --out {d}/s.ply",
+     "--patch-area"},
+    {"solve_zero_max_iterations", {}, "solve " + kScene + " --max-iterations 0 --report {d}/r.json", "--max-iterations"},
+    {"solve_unknown_linear_solver", {}, "solve " + kScene + " --method full --linear-solver qr --out {d}/s.ply",
+     "--linear-solver"},
+    {"solve_unknown_effects", {}, "solve " + kScene + " --effects some --out {d}/s.ply", "--effects"},
+    {"solve_unknown_kernel", {}, "solve " + kScene + " --kernel exact --out {d}/s.ply", "--kernel"},
+    {"solve_zero_visibility_samples", {}, "solve " + kScene + " --visibility-samples 0 --out {d}/s.ply",
+     "--visibility-samples"},
+    {"solve_negative_threads", {}, "solve " + kScene + " --threads -1 --out {d}/s.ply", "--threads"},
+    {"solve_zero_exposure", {}, "solve " + kScene + " --exposure 0 --out {d}/s.ply", "--exposure"},
+    {"solve_missing_scene", {}, "solve {d}/missing.obj --out {d}/s.ply --report {d}/r.json", "missing.obj"},
+    {"solve_missing_material",
+     {{"room.obj", "mtllib room.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl white\nf 1 2 3\n"},
+      {"room.mtl", "newmtl grey\nKd 0.5 0.5 0.5\n"}},
+     "solve {d}/room.obj --out {d}/s.ply",
+     "room.obj:6"},
+    {"solve_reflectance_one", {{"room.obj", "mtllib room.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl white\nf 1 2 3\n"},
+                               {"room.mtl", "newmtl white\nKd 1 1 1\n"}},
+     "solve {d}/room.obj --out {d}/s.ply", "room.mtl:2"},
+    {"solve_unwritable_output", {}, "solve " + kScene + " --quiet --out /proc/hrad-no-such/s.ply", "/proc/hrad-no-such"},
+    {"render_missing_solution", {}, "render {d}/missing.ply --out {d}/i.png", "missing.ply"},
+    {"render_truncated_solution", {{"bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"}},
+     "render {d}/bad.ply --out {d}/i.png", "bad.ply"},
+    {"render_bad_camera", {}, "render {d}/missing.ply --out {d}/i.png --camera 1,2,3", "--camera"},
+    {"render_zero_width", {}, "render {d}/missing.ply --out {d}/i.png --width 0", "--width"},
+    {"render_negative_exposure", {}, "render {d}/missing.ply --out {d}/i.png --exposure -1", "--exposure"},
+    {"render_reference_without_scene", {}, "render {d}/missing.ply --out {d}/i.png --reference {d}/r.ply", "--scene"},
+    {"render_bad_error_range", {}, "render {d}/missing.ply --out {d}/i.png --reference {d}/r.ply --scene " + kScene +
+     " --error-range 2,1", "--error-range"},
+    {"formfactor_missing_file", {}, "formfactor --json {d}/missing.json", "missing.json"},
+    {"formfactor_malformed_json", {{"bad.json", "{\"pairs\": [ {\"name\": \"a\", \"from\": [[0,0,0]"}},
+     "formfactor --json {d}/bad.json", "bad.json"},
+    {"formfactor_degenerate_polygon",
+     {{"bad.json", R"({"pairs": [{"name": "flat", "from": [[0,0,0],[1,0,0],[2,0,0]], "to": [[0,0,1],[0,1,1],[1,1,1]]}]})"}},
+     "formfactor --json {d}/bad.json", "flat"},
+    {"formfactor_zero_normal",
+     {{"bad.json", R"({"pairs": [{"name": "p", "from_point": [0,0,0], "from_normal": [0,0,0], "to": [[0,0,1],[0,1,1],[1,1,1]]}]})"}},
+     "formfactor --json {d}/bad.json", "p"},
+    {"sweep_zero_samples", {}, "sweep " + kScene + " --out {d}/sweep --samples 0", "--samples"},
+    {"sweep_target_error_above_one", {}, "sweep " + kScene + " --out {d}/sweep --target-error 2", "--target-error"},
+    {"sweep_negative_reference", {}, "sweep " + kScene + " --out {d}/sweep --reference-elements -5", "--reference-elements"},
+    {"sweep_missing_scene", {}, "sweep {d}/missing.obj --out {d}/sweep", "missing.obj"},
+    {"figures_unknown_figure", {}, "figures --out {d}/figs --only 7", "--only"},
+    {"figures_missing_scenes", {}, "figures --out {d}/figs --only 1 --scenes {d}/nowhere", "nowhere"},
+};
+
+class CliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInput, OneLineErrorNonZeroExitNothingWritten) {
+  const BadInput& c = GetParam();
+  TempDir dir;
+  for (const auto& [name, text] : c.files) dir.write(name, text);
+  const RunResult r = run_hrad(replace_all(c.args, "{d}", dir.root().string()), dir);
+  EXPECT_TRUE(r.exit_code == 1 || r.exit_code == 2) << "exit " << r.exit_code << "\n" << r.err;
+  const auto lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << "stderr:\n" << r.err;
+  EXPECT_EQ(lines[0].rfind("hrad: error: ", 0), 0u) << lines[0];
+  EXPECT_NE(lines[0].find(c.expected), std::string::npos) << "'" << c.expected << "' not in: " << lines[0];
+  EXPECT_EQ(dir.entries(), c.files.size()) << "an output (or temporary) file was left behind";
+}
+
+INSTANTIATE_TEST_SUITE_P(AllSubcommands, CliBadInput, ::testing::ValuesIn(kCases),
+                         [](const auto& info) { return info.param.name; });
+
+}  // namespace
+}  // namespace hrad::test
