@@ -1,0 +1,271 @@
+#include "hrad/experiments/scene_generator.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <ostream>
+
+#include <fmt/format.h>
+
+#include "hrad/core/error.h"
+#include "hrad/geometry/polygon.h"
+#include "hrad/io/atomic_file.h"
+
+namespace hrad {
+namespace {
+
+constexpr double kCell = 2.5;          // floor cell, metres
+constexpr double kHeight = 3.0;        // room height
+constexpr double kFloorGap = 0.01;     // furniture floats 1 cm above the floor (closed boxes)
+constexpr double kGroupRadius = 1.1;   // a group's footprint stays in this circle about its cell's centre
+
+enum MaterialId { kWall, kFloor, kCeiling, kLight, kWood, kMetal, kFabric, kCardboard, kScreen };
+
+std::vector<Material> generated_materials() {
+  auto m = [](const char* name, Rgb rho, Rgb e = Rgb::Zero()) { return Material{name, rho, e}; };
+  return {m("wall", Rgb(0.70, 0.70, 0.68)),  m("floor", Rgb(0.35, 0.30, 0.25)),
+          m("ceiling", Rgb(0.80, 0.80, 0.80)), m("light", Rgb(0.80, 0.80, 0.80), Rgb(10.0, 10.0, 9.0)),
+          m("wood", Rgb(0.55, 0.40, 0.25)),   m("metal", Rgb(0.50, 0.50, 0.55)),
+          m("fabric", Rgb(0.20, 0.30, 0.60)), m("cardboard", Rgb(0.60, 0.50, 0.35)),
+          m("screen", Rgb(0.05, 0.05, 0.05))};
+}
+
+// splitmix64 (Steele, Lea & Flood 2014): portable, so a seed gives the same scene everywhere
+// (std::uniform_real_distribution is implementation-defined).
+class Rng {
+ public:
+  explicit Rng(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next() {
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  double uniform(double lo, double hi) { return lo + (hi - lo) * static_cast<double>(next() >> 11) * 0x1p-53; }
+  int below(int n) { return static_cast<int>(next() % static_cast<std::uint64_t>(n)); }
+
+ private:
+  std::uint64_t state_;
+};
+
+struct Box {
+  double x0, x1, y0, y1, z0, z1;  // in the group's frame (x, z about the cell centre)
+  int material;
+};
+
+class Builder {
+ public:
+  explicit Builder(GeneratedScene& s) : s_(s) {}
+
+  int group(std::string name) {
+    s_.groups.push_back(std::move(name));
+    return static_cast<int>(s_.groups.size()) - 1;
+  }
+
+  // A quad whose front faces `towards`.
+  void quad(std::vector<Vec3> v, const Vec3& towards, int material, int group) {
+    if (newell_normal(v).dot(towards) < 0.0) std::reverse(v.begin(), v.end());
+    s_.faces.push_back({std::move(v), material, group});
+  }
+
+  // The 6 outward faces of `b`, turned by `angle` about the vertical through (cx, 0, cz).
+  void box(const Box& b, double cx, double cz, double angle, int group) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    auto at = [&](double x, double y, double z) { return Vec3(cx + c * x - s * z, y, cz + s * x + c * z); };
+    const Vec3 centre = at(0.5 * (b.x0 + b.x1), 0.5 * (b.y0 + b.y1), 0.5 * (b.z0 + b.z1));
+    const std::array<Vec3, 8> p = {at(b.x0, b.y0, b.z0), at(b.x1, b.y0, b.z0), at(b.x1, b.y0, b.z1),
+                                   at(b.x0, b.y0, b.z1), at(b.x0, b.y1, b.z0), at(b.x1, b.y1, b.z0),
+                                   at(b.x1, b.y1, b.z1), at(b.x0, b.y1, b.z1)};
+    const std::array<std::array<int, 4>, 6> faces = {
+        {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 2, 6, 7}, {0, 3, 7, 4}, {1, 2, 6, 5}}};
+    for (const auto& f : faces) {
+      std::vector<Vec3> v = {p[f[0]], p[f[1]], p[f[2]], p[f[3]]};
+      const Vec3 mid = 0.25 * (v[0] + v[1] + v[2] + v[3]);
+      quad(std::move(v), mid - centre, b.material, group);
+    }
+  }
+
+ private:
+  GeneratedScene& s_;
+};
+
+// Furniture groups in their own frame, every part 5 mm or more from the others, inside kGroupRadius.
+std::vector<Box> table(bool monitor, double dz) {
+  std::vector<Box> parts = {{-0.6, 0.6, 0.70, 0.74, -0.4 + dz, 0.4 + dz, kWood}};
+  for (const double x : {-0.57, 0.52})
+    for (const double z : {-0.37, 0.32}) parts.push_back({x, x + 0.05, kFloorGap, 0.695, z + dz, z + 0.05 + dz, kMetal});
+  if (monitor) parts.push_back({-0.25, 0.25, 0.745, 1.05, -0.05 + dz, 0.05 + dz, kScreen});
+  return parts;
+}
+
+std::vector<Box> chair(double dz) {
+  std::vector<Box> parts = {{-0.22, 0.22, 0.43, 0.47, -0.22 + dz, 0.22 + dz, kFabric},
+                            {-0.22, 0.22, 0.475, 0.9, 0.18 + dz, 0.22 + dz, kFabric}};
+  for (const double x : {-0.2, 0.16})
+    for (const double z : {-0.2, 0.16}) parts.push_back({x, x + 0.04, kFloorGap, 0.425, z + dz, z + 0.04 + dz, kMetal});
+  return parts;
+}
+
+std::vector<Box> cabinet(Rng& rng) {
+  const double w = rng.uniform(0.4, 1.0), d = rng.uniform(0.4, 0.6), h = rng.uniform(0.6, 2.0);
+  return {{-w / 2, w / 2, kFloorGap, h, -d / 2, d / 2, kWood}};
+}
+
+std::vector<Box> stack(Rng& rng, int count) {
+  std::vector<Box> parts;
+  double y = kFloorGap, half = rng.uniform(0.3, 0.45);
+  for (int k = 0; k < count; ++k) {
+    const double h = rng.uniform(0.2, 0.4);
+    parts.push_back({-half, half, y, y + h, -half * 0.8, half * 0.8, kCardboard});
+    y += h + 0.005;
+    half *= rng.uniform(0.75, 0.95);
+  }
+  return parts;
+}
+
+// A group chosen at random among those that fit in `budget` polygons; empty when none does.
+std::pair<std::string, std::vector<Box>> furniture(Rng& rng, int budget) {
+  const int pick = rng.below(100);
+  if (pick < 35 && budget >= 72) {
+    const bool monitor = rng.below(2) == 0;
+    std::vector<Box> parts = table(monitor, -0.25);
+    for (const Box& b : chair(0.55)) parts.push_back(b);
+    return {"desk", parts};
+  }
+  if (pick < 50 && budget >= 36) return {"table", table(true, 0.0)};
+  if (pick < 75 && budget >= 6 && budget < 30) return {"boxes", stack(rng, std::min(5, budget / 6))};
+  if (pick < 75 && budget >= 6) return {"cabinet", cabinet(rng)};
+  if (budget >= 6) return {"boxes", stack(rng, std::min(budget / 6, 2 + rng.below(4)))};
+  return {};
+}
+
+}  // namespace
+
+GeneratedScene generate_scene(const SceneGeneratorOptions& options) {
+  const int n = options.polygons;
+  if (n < kMinGeneratedPolygons || n > 10'000'000)
+    throw Error(fmt::format("--polygons must be in [{}, 10000000], got {}", kMinGeneratedPolygons, n));
+  GeneratedScene s;
+  s.materials = generated_materials();
+  Builder b(s);
+  Rng rng(options.seed);
+
+  // About 44 polygons per cell on average (8 tiles and a group); size the floor for 36 per cell,
+  // so that the groups exhaust the budget before the cells run out.
+  const int cells = std::max(1, n / 36);
+  const int nx = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(cells)))));
+  const int nz = std::max(1, (cells + nx - 1) / nx);
+  s.cells_x = nx;
+  s.cells_z = nz;
+  const double sx = nx * kCell, sz = nz * kCell;
+  s.room_size = Vec3(sx, kHeight, sz);
+  const Vec3 inside(sx / 2, kHeight / 2, sz / 2);
+
+  // Room: 1.25 m tiles on floor and ceiling, 1.25 x 1.5 m on the walls, all facing inwards.
+  const double t = kCell / 2;
+  const int floor_group = b.group("floor"), ceiling_group = b.group("ceiling"), wall_group = b.group("walls"),
+            light_group = b.group("lights");
+  for (int i = 0; i < 2 * nx; ++i)
+    for (int k = 0; k < 2 * nz; ++k) {
+      const double x0 = i * t, x1 = (i + 1) * t, z0 = k * t, z1 = (k + 1) * t;
+      b.quad({{x0, 0, z0}, {x1, 0, z0}, {x1, 0, z1}, {x0, 0, z1}}, Vec3::UnitY(), kFloor, floor_group);
+    }
+  for (int i = 0; i < 2 * nx; ++i)
+    for (int k = 0; k < 2 * nz; ++k) {
+      const double x0 = i * t, x1 = (i + 1) * t, z0 = k * t, z1 = (k + 1) * t;
+      // A light on the first tile of every other cell (checkerboard), at least one per room.
+      const bool light = i % 2 == 0 && k % 2 == 0 && (i / 2 + k / 2) % 2 == 0;
+      b.quad({{x0, kHeight, z0}, {x1, kHeight, z0}, {x1, kHeight, z1}, {x0, kHeight, z1}}, -Vec3::UnitY(),
+             light ? kLight : kCeiling, light ? light_group : ceiling_group);
+    }
+  for (int row = 0; row < 2; ++row) {
+    const double y0 = row * kHeight / 2, y1 = (row + 1) * kHeight / 2;
+    for (int i = 0; i < 2 * nx; ++i) {
+      const double x0 = i * t, x1 = (i + 1) * t;
+      b.quad({{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}}, Vec3::UnitZ(), kWall, wall_group);
+      b.quad({{x0, y0, sz}, {x1, y0, sz}, {x1, y1, sz}, {x0, y1, sz}}, -Vec3::UnitZ(), kWall, wall_group);
+    }
+    for (int k = 0; k < 2 * nz; ++k) {
+      const double z0 = k * t, z1 = (k + 1) * t;
+      b.quad({{0, y0, z0}, {0, y0, z1}, {0, y1, z1}, {0, y1, z0}}, Vec3::UnitX(), kWall, wall_group);
+      b.quad({{sx, y0, z0}, {sx, y0, z1}, {sx, y1, z1}, {sx, y1, z0}}, -Vec3::UnitX(), kWall, wall_group);
+    }
+  }
+  if (static_cast<int>(s.faces.size()) > n - 6)
+    throw Error(fmt::format("--polygons {} is too few for a {} x {} cell room ({} tiles)", n, nx, nz, s.faces.size()));
+
+  // Furniture: one group per cell, cells in a random order, until the budget is spent.
+  std::vector<int> order(static_cast<std::size_t>(nx * nz));
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[static_cast<std::size_t>(rng.below(static_cast<int>(i)))]);
+  int objects = 0;
+  auto budget = [&] { return n - static_cast<int>(s.faces.size()); };
+  for (const int cell : order) {
+    if (budget() < 6) break;
+    const double cx = (cell % nx + 0.5) * kCell, cz = (cell / nx + 0.5) * kCell;
+    auto [name, parts] = furniture(rng, budget());
+    if (parts.empty()) continue;
+    const double angle = rng.uniform(0.0, 2.0 * std::numbers::pi);
+    const int g = b.group(fmt::format("{}_{}", name, objects++));
+    for (const Box& part : parts) b.box(part, cx, cz, angle, g);
+  }
+  // Whatever is left (rare): 15 cm cubes in the cells' corners, outside every group's circle.
+  for (int cell = 0; cell < nx * nz && budget() >= 6; ++cell) {
+    const double cx = (cell % nx + 0.5) * kCell, cz = (cell / nx + 0.5) * kCell;
+    for (const auto& [dx, dz] : {std::pair{0.95, 0.95}, {-1.1, 0.95}, {0.95, -1.1}, {-1.1, -1.1}}) {
+      if (budget() < 6) break;
+      const int g = b.group(fmt::format("cube_{}", objects++));
+      b.box({dx, dx + 0.15, kFloorGap, 0.16, dz, dz + 0.15, kCardboard}, cx, cz, 0.0, g);
+    }
+  }
+  static_assert(kGroupRadius < kCell / 2 - 0.1, "groups keep 10 cm from their cell's border");
+  return s;
+}
+
+Scene to_scene(const GeneratedScene& g) {
+  Scene scene;
+  scene.path = "generated";
+  scene.materials = g.materials;
+  scene.patches.reserve(g.faces.size());
+  scene.faces.reserve(g.faces.size());
+  for (const GeneratedScene::Face& f : g.faces) {
+    Patch p;
+    p.vertices = f.vertices;
+    p.normal = newell_normal(f.vertices).normalized();
+    p.area = polygon_area(f.vertices);
+    p.material = f.material;
+    p.face = static_cast<int>(scene.faces.size());
+    p.group = g.groups[static_cast<std::size_t>(f.group)];
+    scene.faces.push_back({p.group, f.material, 0, p.area, {static_cast<int>(scene.patches.size())}});
+    scene.patches.push_back(std::move(p));
+  }
+  return scene;
+}
+
+void write_generated_scene(const GeneratedScene& g, const std::string& obj_path) {
+  namespace fs = std::filesystem;
+  const fs::path mtl = fs::path(obj_path).replace_extension(".mtl");
+  write_file_atomically(mtl.string(), [&](std::ostream& out) {
+    out << "# hrad scene generate: materials\n";
+    for (const Material& m : g.materials) {
+      out << fmt::format("\nnewmtl {}\nKd {} {} {}\n", m.name, m.reflectance[0], m.reflectance[1], m.reflectance[2]);
+      if (m.is_emitter()) out << fmt::format("Ke {} {} {}\n", m.emission[0], m.emission[1], m.emission[2]);
+    }
+  });
+  write_file_atomically(obj_path, [&](std::ostream& out) {
+    out << fmt::format("# hrad scene generate: {} polygons, {} x {} cells, room {} x {} x {} m\nmtllib {}\n",
+                       g.faces.size(), g.cells_x, g.cells_z, g.room_size.x(), g.room_size.y(), g.room_size.z(),
+                       mtl.filename().string());
+    int group = -1, material = -1;
+    for (const GeneratedScene::Face& f : g.faces) {
+      if (f.group != group) out << "\no " << g.groups[static_cast<std::size_t>(group = f.group)] << "\n";
+      if (f.material != material) out << "usemtl " << g.materials[static_cast<std::size_t>(material = f.material)].name << "\n";
+      for (const Vec3& v : f.vertices) out << fmt::format("v {} {} {}\n", v.x(), v.y(), v.z());
+      out << "f -4 -3 -2 -1\n";
+    }
+  });
+}
+
+}  // namespace hrad

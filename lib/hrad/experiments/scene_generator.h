@@ -1,0 +1,58 @@
+// Scale scenes for benchmarks: a closed, tiled room (an open-plan office) with ceiling lights and
+// furniture built from closed boxes, sized to about a requested number of input polygons and
+// deterministic in a seed.
+//
+// Layout: the floor is a grid of 2.5 m cells; floor and ceiling are tiled with 1.25 m quads, the
+// walls with 1.25 x 1.5 m quads (3 m high), all facing into the room; every other cell's first
+// ceiling tile (checkerboard) is a light. Each cell holds one furniture group (a table with legs
+// and sometimes a monitor, a chair, a cabinet, or a stack of boxes), turned by a random angle about
+// the vertical, every part a closed box with 6 outward faces, 1 cm above the floor and separated
+// from the other parts by >= 5 mm. So every front face sees only front faces: the scene is closed
+// (no light is lost through gaps or onto back faces), like the rooms of the closed-form tests.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hrad/core/scene.h"
+#include "hrad/core/types.h"
+
+namespace hrad {
+
+struct SceneGeneratorOptions {
+  int polygons = 1000;      ///< requested input polygons (>= kMinGeneratedPolygons)
+  std::uint64_t seed = 1;   ///< the same seed and count give the same scene, bit for bit
+};
+
+/// Fewest polygons a generated room can have (a 1 x 1 cell room's tiles and one group).
+inline constexpr int kMinGeneratedPolygons = 64;
+
+/// A generated scene before it becomes a file or a Scene: quads with a material and a group name.
+struct GeneratedScene {
+  struct Face {
+    std::vector<Vec3> vertices;  ///< counter-clockwise seen from the front
+    int material = 0;
+    int group = 0;               ///< index into groups
+  };
+  std::vector<Material> materials;
+  std::vector<std::string> groups;
+  std::vector<Face> faces;
+  int cells_x = 0, cells_z = 0;  ///< floor cells (2.5 m each)
+  Vec3 room_size = Vec3::Zero(); ///< the room is [0, x] x [0, y] x [0, z] (metres)
+};
+
+/// The polygon count of generate_scene() lies in [polygons - kGeneratedPolygonSlack, polygons].
+inline constexpr int kGeneratedPolygonSlack = 5;
+
+/// Generates the room. hrad::Error naming --polygons when options.polygons < kMinGeneratedPolygons
+/// or > 10,000,000.
+GeneratedScene generate_scene(const SceneGeneratorOptions& options);
+
+/// The same as a Scene (one patch per face, normals and areas computed), for benchmarks without files.
+Scene to_scene(const GeneratedScene& generated);
+
+/// Writes `obj_path` and the material library beside it (same stem, .mtl), each atomically.
+void write_generated_scene(const GeneratedScene& generated, const std::string& obj_path);
+
+}  // namespace hrad
