@@ -11,5 +11,6 @@ void add_solve_command(CLI::App& app);
 void add_formfactor_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
 void add_figures_command(CLI::App& app);
+void add_scene_command(CLI::App& app);
 
 }  // namespace hrad::cli
