@@ -23,8 +23,9 @@
 
 #include <array>
 #include <cmath>
-#include <complex>
+#include <algorithm>
 
+#include "hrad/formfactor/fast_atan2.h"
 #include "hrad/formfactor/gauss_legendre.h"
 
 namespace hrad::detail {
@@ -78,29 +79,40 @@ double log_part(double alpha, double c, double rho, double s0, double s1, double
   return alpha * (a1 - a0) - c * (b1 - b0);
 }
 
+// A singular point re + i im (im >= 0; its conjugate is one too) of h theta in the s plane.
+struct Singularity {
+  double re, im;
+};
+
 struct SkewPair {
   Vec3 w0, a, b;  // w0 = P0 - Q0; unit directions
+  Vec3 m, axb;    // w0 x b and a x b: w(s) x b = m + s (a x b)
   double lq;
-  std::array<std::complex<double>, 3> singular;  // in the s plane (upper half; conjugates implied)
+  std::array<Singularity, 3> singular;
   int singular_count = 0;
 };
 
 inline double h_theta(const SkewPair& e, double s) {
   const Vec3 w = e.w0 + s * e.a;
-  const double h = w.cross(e.b).norm();
+  const double h = (e.m + s * e.axb).norm();
   if (h == 0.0) return 0.0;
-  return h * std::atan2(h * e.lq, w.dot(w - e.lq * e.b));
+  return h * fast_atan2(h * e.lq, w.dot(w - e.lq * e.b));
 }
 
-double bernstein_rho(std::complex<double> z, double lo, double hi) {
-  const std::complex<double> xi = (2.0 * z - (lo + hi)) / (hi - lo);
-  const std::complex<double> root = std::sqrt(xi - 1.0) * std::sqrt(xi + 1.0);
-  return std::max(std::abs(xi + root), std::abs(xi - root));
+// Semi-major axis, in half-lengths of [lo, hi], of the ellipse with foci lo and hi through z: the
+// Bernstein ellipse through z has rho = a + sqrt(a^2 - 1) (Trefethen 2013, ATAP ch. 8), which
+// grows with a, so the nearest singularity is the one of smallest a. Real arithmetic only.
+inline double semi_major(const Singularity& z, double lo, double hi) {
+  const double im2 = z.im * z.im;
+  return (std::sqrt((z.re - lo) * (z.re - lo) + im2) + std::sqrt((z.re - hi) * (z.re - hi) + im2)) / (hi - lo);
 }
 
 constexpr double kLogTarget = 18.5;  // ln(1e16) / 2: nodes n with rho^(-2n) <= 1e-16
 constexpr int kMinOrder = 3;
-constexpr int kMaxOrder = 20;
+// Up to this many nodes a panel is kept whole: one panel of n(rho) nodes costs less than two
+// halves unless the singularity is within about half a panel length of it.
+constexpr int kMaxOrder = 32;
+static_assert(kMaxOrder <= kMaxGaussOrder);
 
 double gauss(const SkewPair& e, double lo, double hi, int n) {
   const GaussRule g = gauss_legendre(n);
@@ -111,13 +123,14 @@ double gauss(const SkewPair& e, double lo, double hi, int n) {
 }
 
 double panels(const SkewPair& e, double lo, double hi, double min_length) {
-  double rho = INFINITY;
+  double a = INFINITY;
   int worst = 0;
   for (int k = 0; k < e.singular_count; ++k) {
-    const double r = bernstein_rho(e.singular[k], lo, hi);
-    if (r < rho) rho = r, worst = k;
+    const double ak = semi_major(e.singular[k], lo, hi);
+    if (ak < a) a = ak, worst = k;
   }
   const double len = hi - lo;
+  const double rho = a + std::sqrt(std::max(0.0, (a - 1.0) * (a + 1.0)));
   const double need = rho > 1.0 ? kLogTarget / std::log(rho) : INFINITY;
   if (need <= kMaxOrder || len <= min_length)
     // Clamp before the cast: `need` is infinite when a singularity lies on a panel already at the
@@ -125,7 +138,7 @@ double panels(const SkewPair& e, double lo, double hi, double min_length) {
     return gauss(e, lo, hi,
                  static_cast<int>(std::clamp(std::ceil(need), double(kMinOrder), double(kMaxOrder))));
   // Split at the singularity's abscissa when it lies well inside, else grade towards the end.
-  const double x = e.singular[worst].real();
+  const double x = e.singular[worst].re;
   double split;
   if (x > lo + 0.05 * len && x < hi - 0.05 * len) {
     split = x;
@@ -142,6 +155,8 @@ EdgePairIntegral skew_pair(const Vec3& p0, const Vec3& a, double lp, const Vec3&
   e.a = a;
   e.b = b;
   e.lq = lq;
+  e.m = e.w0.cross(b);
+  e.axb = axb;
   const double c = a.dot(b);
   // Logarithmic part, both ends of q: t_k = 0 (sign -1) and t_k = Lq (sign +1).
   double sum = 0.0, magnitude = 0.0;
@@ -159,9 +174,8 @@ EdgePairIntegral skew_pair(const Vec3& p0, const Vec3& a, double lp, const Vec3&
   // Branch point of h(s) = |w0 x b + s (a x b)|.
   const double axb2 = axb.squaredNorm();
   if (axb2 > 0.0) {
-    const Vec3 m = e.w0.cross(b);
-    const double s_star = -m.dot(axb) / axb2;
-    const double im = (m + s_star * axb).norm() / std::sqrt(axb2);
+    const double s_star = -e.m.dot(axb) / axb2;
+    const double im = (e.m + s_star * axb).norm() / std::sqrt(axb2);
     if (std::isfinite(s_star) && std::isfinite(im)) e.singular[e.singular_count++] = {s_star, im};
   }
   const double remainder = panels(e, 0.0, lp, 1e-9 * lp);

@@ -8,12 +8,17 @@
 //
 // The sum cancels when the polygon is small or thin against its distance, or grazes the tangent
 // plane (terms ~ angle, result ~ solid angle times cosine). Its rounding error is below
-// eps * sum |terms|; when that is not 1e-13 of the result, the polygon is triangulated and bisected
-// until each piece is either far from x relative to its size (product Gauss quadrature of the
-// kernel cos cos / (pi r^2), which does not cancel; see far_field_form_factor.h for the order) or
-// has an accurate Lambert sum of its own.
+// eps * sum |terms|; when that is not rel_tol (1e-13 by default) of the result, the polygon is
+// triangulated and bisected until each piece is either far from x relative to its size (product
+// Gauss quadrature of the kernel cos cos / (pi r^2), which does not cancel; see
+// far_field_form_factor.h for the order) or has an accurate Lambert sum of its own.
+//
+// Cost: per edge one cross product, one square root, one atan2 (fast_atan2.h) and one division; the
+// relative vertices live on the stack for up to kStackVertices vertices, and the clipping runs only
+// when a vertex lies behind the tangent plane.
 #include "hrad/formfactor/point_to_polygon.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -21,6 +26,7 @@
 
 #include "hrad/formfactor/clip_polygon.h"
 #include "hrad/formfactor/far_field_form_factor.h"
+#include "hrad/formfactor/fast_atan2.h"
 #include "hrad/formfactor/polygon_quadrature.h"
 #include "hrad/formfactor/triangle_piece.h"
 #include "hrad/geometry/polygon.h"
@@ -29,8 +35,8 @@ namespace hrad {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr double kRelTol = 1e-13;
 constexpr int kMaxPieces = 2000;  // grazing polygons never get accurate pieces: bound the cost
+constexpr std::size_t kStackVertices = 16;
 
 struct LambertSum {
   double value;
@@ -49,7 +55,7 @@ LambertSum lambert_sum(std::span<const Vec3> r, const Vec3& n) {
     // s == 0: x on the edge's line. Outside the segment gamma = 0; on it x would lie in the
     // polygon's plane, which the caller has excluded. Either way the term is 0.
     if (s > 0.0) {
-      const double term = std::atan2(s, a.dot(b)) * n.dot(c) / s;
+      const double term = detail::fast_atan2(s, a.dot(b)) * n.dot(c) / s;
       sum += term;
       magnitude += std::abs(term);
     }
@@ -57,11 +63,10 @@ LambertSum lambert_sum(std::span<const Vec3> r, const Vec3& n) {
   return {sum / (2.0 * std::numbers::pi), magnitude / (2.0 * std::numbers::pi)};
 }
 
-bool accurate(const LambertSum& s) { return kEps * s.magnitude <= kRelTol * s.value; }
-
 // Pieces of the polygon (vertices relative to x, polygon normal `normal`), see the file comment.
 struct Refinement {
   Vec3 n, normal;
+  double rel_tol;
   int pieces = 0;
 
   double refine(const detail::TrianglePiece& t) {
@@ -79,16 +84,16 @@ struct Refinement {
       return sum / std::numbers::pi;
     }
     const LambertSum s = lambert_sum(t.v, n);
-    if (accurate(s) || pieces >= kMaxPieces) return std::max(0.0, s.value);
+    if (kEps * s.magnitude <= rel_tol * s.value || pieces >= kMaxPieces) return std::max(0.0, s.value);
     const auto halves = detail::bisect(t);
     return refine(halves[0]) + refine(halves[1]);
   }
 };
 
-double evaluate(std::span<const Vec3> r, const Vec3& n, const Vec3& normal) {
+double evaluate(std::span<const Vec3> r, const Vec3& n, const Vec3& normal, double rel_tol) {
   const LambertSum s = lambert_sum(r, n);
-  if (accurate(s)) return std::max(0.0, s.value);
-  Refinement refinement{n, normal.normalized()};
+  if (rel_tol == kLambertSumOnly || kEps * s.magnitude <= rel_tol * s.value) return std::max(0.0, s.value);
+  Refinement refinement{n, normal.normalized(), rel_tol};
   double sum = 0.0;
   for (const auto& t : detail::triangle_pieces(r, refinement.normal)) sum += refinement.refine(t);
   return sum;
@@ -96,13 +101,21 @@ double evaluate(std::span<const Vec3> r, const Vec3& n, const Vec3& normal) {
 
 }  // namespace
 
-double point_to_polygon(const Vec3& x, const Vec3& n, std::span<const Vec3> polygon) {
+double point_to_polygon(const Vec3& x, const Vec3& n, std::span<const Vec3> polygon, double rel_tol) {
   const std::size_t k = polygon.size();
   if (k < 3) return 0.0;
-  thread_local std::vector<Vec3> r, clipped;
-  thread_local std::vector<double> height;
-  r.resize(k);
-  height.resize(k);
+  std::array<Vec3, kStackVertices> r_stack;
+  std::array<double, kStackVertices> height_stack;
+  thread_local std::vector<Vec3> r_heap, clipped;
+  thread_local std::vector<double> height_heap;
+  Vec3* r = r_stack.data();
+  double* height = height_stack.data();
+  if (k > kStackVertices) {
+    r_heap.resize(k);
+    height_heap.resize(k);
+    r = r_heap.data();
+    height = height_heap.data();
+  }
   bool any_above = false, any_below = false;
   std::size_t nearest = 0;
   double nearest_d2 = INFINITY;
@@ -115,13 +128,14 @@ double point_to_polygon(const Vec3& x, const Vec3& n, std::span<const Vec3> poly
     if (d2 < nearest_d2) nearest_d2 = d2, nearest = i;
   }
   if (!any_above) return 0.0;  // behind or in the tangent plane
+  const std::span<const Vec3> relative(r, k);
   // x must be strictly in front of the polygon (its plane evaluated at the vertex nearest x).
-  const Vec3 normal = newell_normal(r);
+  const Vec3 normal = newell_normal(relative);
   if (!(normal.dot(r[nearest]) < 0.0)) return 0.0;
-  if (!any_below) return evaluate(r, n, normal);
-  detail::clip_to_half_space(r, height, clipped);
+  if (!any_below) return evaluate(relative, n, normal, rel_tol);
+  detail::clip_to_half_space(relative, std::span<const double>(height, k), clipped);
   if (clipped.size() < 3) return 0.0;
-  return evaluate(clipped, n, normal);
+  return evaluate(clipped, n, normal, rel_tol);
 }
 
 }  // namespace hrad
