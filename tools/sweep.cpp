@@ -17,6 +17,8 @@
 // --quick runs 3 small settings per parameter (for tests). Progress goes to stderr.
 #include <fstream>
 #include <iostream>
+#include <sstream>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -30,6 +32,30 @@
 #include "progress_bar.h"
 
 namespace hrad::cli {
+namespace {
+
+// "a,b,c" as numbers in [lo, hi]; empty text gives an empty list (the default settings).
+std::vector<double> parse_list(const std::string& option, const std::string& text, double lo, double hi) {
+  std::vector<double> values;
+  if (text.empty()) return values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    double x = 0.0;
+    std::size_t used = 0;
+    try {
+      x = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || !(x >= lo && x <= hi))
+      throw Error(fmt::format("{}: expected comma-separated numbers in [{:g}, {:g}], got '{}'", option, lo, hi, text));
+    values.push_back(x);
+  }
+  return values;
+}
+
+}  // namespace
 
 void add_sweep_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("sweep", "Run every method over its accuracy parameter; error against time");
@@ -38,6 +64,8 @@ void add_sweep_command(CLI::App& app) {
     bool quick = false;
     double reference_elements = 0.0, target_error = 0.01;
     int samples = 256, threads = 0;
+    std::string elements, patches, feps, aeps;
+    int visibility_samples = 0;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("SCENE", args->scene, "Scene file (.obj)")->required();
@@ -48,12 +76,24 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--samples", args->samples, "Error samples per patch (default 256)");
   cmd->add_option("--target-error", args->target_error, "Relative L2 error for the time-to-error ratio (default 0.01)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
+  cmd->add_option("--elements", args->elements, "Element counts of the full and substructuring runs, e.g. 64,128,256");
+  cmd->add_option("--patches", args->patches, "Shooting-patch counts of the substructuring patch-size runs");
+  cmd->add_option("--feps", args->feps, "Hierarchical form-factor tolerances");
+  cmd->add_option("--aeps", args->aeps, "Hierarchical smallest-element areas as fractions of the total area");
+  cmd->add_option("--visibility-samples", args->visibility_samples,
+                  "Point pairs per partly visible pair in every run (default: the solvers'); the reference uses 4x");
   cmd->callback([args] {
     if (!(args->samples >= 1 && args->samples <= 1'000'000)) throw Error(fmt::format("--samples must be in [1, 1e6], got {}", args->samples));
     if (!(args->target_error > 0 && args->target_error < 1)) throw Error(fmt::format("--target-error must be in (0, 1), got {}", args->target_error));
     if (!(args->reference_elements >= 0 && args->reference_elements <= 1e6))
       throw Error(fmt::format("--reference-elements must be in [0, 1e6], got {}", args->reference_elements));
     if (args->threads < 0) throw Error(fmt::format("--threads must be >= 0, got {}", args->threads));
+    if (args->visibility_samples < 0 || args->visibility_samples > 65536)
+      throw Error(fmt::format("--visibility-samples must be in [0, 65536], got {}", args->visibility_samples));
+    const auto elements = parse_list("--elements", args->elements, 1.0, 1e6);
+    const auto patches = parse_list("--patches", args->patches, 1.0, 1e6);
+    const auto feps = parse_list("--feps", args->feps, 1e-9, 1.0);
+    const auto aeps = parse_list("--aeps", args->aeps, 1e-12, 1.0);
     std::vector<std::string> warnings;
     const Scene scene = read_obj_scene(args->scene, &warnings);
     for (const auto& w : warnings) std::cerr << w << "\n";
@@ -68,6 +108,11 @@ void add_sweep_command(CLI::App& app) {
       options.feps_values = {0.3, 0.1, 0.03};
       options.aeps_fractions = {1e-2, 3e-3, 1e-3};
     }
+    if (!elements.empty()) options.element_counts = elements;
+    if (!patches.empty()) options.patch_counts = patches;
+    if (!feps.empty()) options.feps_values = feps;
+    if (!aeps.empty()) options.aeps_fractions = aeps;
+    options.visibility_samples = args->visibility_samples;
     options.progress = show_progress;
 
     std::cerr << fmt::format("sweep: reference ({} elements, full matrix, LU)...\n",
@@ -85,8 +130,13 @@ void add_sweep_command(CLI::App& app) {
     write_json_file(dir + "/reference.json", ref);
     write_json_file(dir + "/fit.json", fits);
     write_file_atomically(dir + "/command.txt", [&](std::ostream& o) {
-      o << fmt::format("build/bin/hrad sweep {} --out {}{}{}\n", args->scene, dir, args->quick ? " --quick" : "",
+      o << fmt::format("build/bin/hrad sweep {} --out {}{}{}", args->scene, dir, args->quick ? " --quick" : "",
                        args->reference_elements > 0 ? fmt::format(" --reference-elements {}", args->reference_elements) : "");
+      for (const auto& [name, text] : {std::pair{"--elements", args->elements}, {"--patches", args->patches},
+                                       {"--feps", args->feps}, {"--aeps", args->aeps}})
+        if (!text.empty()) o << " " << name << " " << text;
+      if (args->visibility_samples > 0) o << " --visibility-samples " << args->visibility_samples;
+      o << "\n";
     });
     run_plot("pareto.py", {dir + "/sweep.csv", dir + "/pareto.png", "What accuracy costs in time: " + scene.path});
 

@@ -240,3 +240,35 @@ TEST(EnergyBalance, FurnaceIsBalancedAndAnErrorShows) {
 
 }  // namespace
 }  // namespace hrad
+
+namespace hrad {
+namespace {
+
+// Field::interpolated reproduces a linear field exactly on any fan of a leaf (two leaves with a
+// shared edge here), where the constant field cannot.
+TEST(ErrorMetrics, InterpolatedFieldIsExactForLinearVertexValues) {
+  const Scene scene = unit_square_scene();
+  const auto linear = [](const Vec3& x) { return Rgb(1.0 + 2.0 * x.x() + 3.0 * x.y(), 2.0, 0.5 + x.y()); };
+  Solution s = split_square(0.3, Rgb::Ones(), Rgb::Ones());
+  for (std::size_t v = 0; v < s.vertices.size(); ++v) s.vertex_radiosity[v] = linear(s.vertices[v]);
+  const auto reference = [&](const Vec3& x, int) { return linear(x); };
+  EXPECT_LT(compare_to_function(scene, s, reference, 400, Emitters::include, Field::interpolated).relative_l2, 1e-14);
+  EXPECT_GT(compare_to_function(scene, s, reference, 400, Emitters::include, Field::constant).relative_l2, 0.1);
+}
+
+// Vertex values 0, 0, 1, 1 (y = 0 and y = 1) interpolate to B = y; against the constant 1/2 the
+// midpoint samples of an m x m grid give sum_j ((j + 1/2)/m - 1/2)^2 / m = (m^2 - 1) / (12 m^2).
+TEST(ErrorMetrics, InterpolatedFieldAgainstAConstantByHand) {
+  const Scene scene = unit_square_scene();
+  Solution s = whole_square(Rgb::Constant(0.5));
+  s.vertex_radiosity = {Rgb::Zero(), Rgb::Zero(), Rgb::Ones(), Rgb::Ones()};
+  const int m = 16;
+  const ErrorMetrics e = compare_to_function(
+      scene, s, [](const Vec3&, int) { return Rgb::Constant(0.5); }, m * m, Emitters::include, Field::interpolated);
+  EXPECT_NEAR(e.relative_l2, std::sqrt((m * m - 1.0) / (12.0 * m * m)) / 0.5, 1e-12);
+  EXPECT_NEAR(e.relative_linf, (0.5 - 0.5 / m) / 0.5, 1e-12);
+  EXPECT_EQ(compare_to_function(scene, s, [](const Vec3&, int) { return Rgb::Constant(0.5); }, m * m).relative_l2, 0.0);
+}
+
+}  // namespace
+}  // namespace hrad

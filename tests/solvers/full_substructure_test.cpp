@@ -267,7 +267,10 @@ TEST(FullMatrix, LinksAndCounters) {
 
 // --- The bundled Cornell box -----------------------------------------------------------------------
 
-TEST(CornellBox, FullAndSubstructuringAgreeOnTheBrightPatches) {
+// Issue 5: the methods agree per patch at their defaults. Measured (2026-11-22): worst 7.3% of the
+// patch's own mean (a side of the short block), 7.0% of the brighter of the patch and the mean
+// reflector radiosity; with the input polygons as shooting patches it was 60%.
+TEST(CornellBox, FullAndSubstructuringAgreePerPatchAtDefaults) {
   const Scene s = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
   SolveOptions o;
   o.method = Method::kFull;
@@ -287,7 +290,18 @@ TEST(CornellBox, FullAndSubstructuringAgreeOnTheBrightPatches) {
       a += s.patches[p].area * full.patch_radiosity[p][c];
       b += s.patches[p].area * sub.patch_radiosity[p][c];
     }
-    EXPECT_NEAR(b / a, 1.0, 0.05) << "channel " << c;
+    EXPECT_NEAR(b / a, 1.0, 0.02) << "channel " << c;
+  }
+  double total = 0.0, mean = 0.0;
+  for (std::size_t p = 0; p < s.patches.size(); ++p)
+    if (!s.material_of(s.patches[p]).is_emitter()) {
+      total += s.patches[p].area;
+      mean += s.patches[p].area * full.patch_radiosity[p].mean();
+    }
+  mean /= total;
+  for (std::size_t p = 0; p < s.patches.size(); ++p) {
+    const double f = full.patch_radiosity[p].mean(), g = sub.patch_radiosity[p].mean();
+    EXPECT_LE(std::abs(g - f), 0.08 * std::max(f, mean)) << "patch " << p << " (" << s.patches[p].group << ")";
   }
 }
 

@@ -135,14 +135,40 @@ int SolutionSampler::leaf_at(const Vec3& x, int patch, bool* matched) const {
   return best;
 }
 
-Rgb SolutionSampler::value_at(const Vec3& x, int patch, bool* matched) const {
+Rgb SolutionSampler::value_at(const Vec3& x, int patch, bool* matched, Field field) const {
   const int f = leaf_at(x, patch, matched);
-  return f < 0 ? Rgb::Zero() : solution_.face_radiosity[f];
+  if (f < 0) return Rgb::Zero();
+  return field == Field::constant ? solution_.face_radiosity[f] : interpolated(f, x);
+}
+
+Rgb SolutionSampler::interpolated(int face, const Vec3& x) const {
+  const std::vector<int>& ids = solution_.faces[face];
+  const Vec3& normal = scene_.patches[solution_.face_patch[face]].normal;
+  // The fan triangle (v0, vk, vk+1) whose smallest barycentric coordinate at x is largest: the
+  // one containing x, or the nearest for a point just outside the leaf.
+  const Vec3& a = solution_.vertices[ids[0]];
+  double best_min = -std::numeric_limits<double>::infinity();
+  Rgb best = solution_.face_radiosity[face];
+  for (std::size_t k = 1; k + 1 < ids.size(); ++k) {
+    const Vec3& b = solution_.vertices[ids[k]];
+    const Vec3& c = solution_.vertices[ids[k + 1]];
+    const double twice_area = (b - a).cross(c - a).dot(normal);
+    if (!(twice_area > 0.0)) continue;  // a degenerate fan triangle (collinear T-vertices)
+    const double wa = (b - x).cross(c - x).dot(normal) / twice_area;
+    const double wb = (c - x).cross(a - x).dot(normal) / twice_area;
+    const double wc = 1.0 - wa - wb;
+    const double smallest = std::min({wa, wb, wc});
+    if (smallest <= best_min) continue;
+    best_min = smallest;
+    best = wa * solution_.vertex_radiosity[ids[0]] + wb * solution_.vertex_radiosity[ids[k]] +
+           wc * solution_.vertex_radiosity[ids[k + 1]];
+  }
+  return best;
 }
 
 ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
                                  const std::function<Rgb(const Vec3&, int)>& reference, int samples_per_patch,
-                                 Emitters emitters) {
+                                 Emitters emitters, Field field) {
   auto skipped = [&](int patch) {
     return emitters == Emitters::exclude && scene.material_of(scene.patches[patch]).is_emitter();
   };
@@ -159,7 +185,9 @@ ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
     bool matched = true;
     const int f = sampler.leaf_at(s.position, s.patch, &matched);
     if (!matched) ++m.unmatched;
-    const Rgb b = f < 0 ? Rgb::Zero() : solution.face_radiosity[f];
+    const Rgb b = f < 0                      ? Rgb::Zero()
+                  : field == Field::constant ? solution.face_radiosity[f]
+                                             : sampler.interpolated(f, s.position);
     const Rgb r = reference(s.position, s.patch);
     const double e2 = (b - r).matrix().squaredNorm(), r2 = r.matrix().squaredNorm();
     err += s.area * e2;
@@ -199,18 +227,18 @@ ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
 }
 
 ErrorMetrics compare_solutions(const Scene& scene, const Solution& solution, const Solution& reference,
-                               int samples_per_patch, Emitters emitters) {
+                               int samples_per_patch, Emitters emitters, Field field) {
   const SolutionSampler ref_sampler(scene, reference);
   std::size_t ref_unmatched = 0;
   ErrorMetrics m = compare_to_function(
       scene, solution,
       [&](const Vec3& x, int patch) {
         bool matched = true;
-        const Rgb r = ref_sampler.value_at(x, patch, &matched);
+        const Rgb r = ref_sampler.value_at(x, patch, &matched, field);
         if (!matched) ++ref_unmatched;
         return r;
       },
-      samples_per_patch, emitters);
+      samples_per_patch, emitters, field);
   m.unmatched += ref_unmatched;
   return m;
 }

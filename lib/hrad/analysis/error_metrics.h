@@ -8,8 +8,11 @@
 //     planar quad the Jacobian is linear in (u, v), so the weights add up to the area exactly);
 //   * a triangle is cut into m^2 congruent triangles (m per side) and sampled at their centroids,
 //     each standing for area / m^2; a polygon with more vertices is fanned into triangles.
-// The value of a Solution at a sample of patch p is the constant face_radiosity of the leaf of
-// patch p that contains the point (point in convex polygon in the patch's plane, with a relative
+// The value of a Solution at a sample of patch p comes from the leaf of patch p that contains the
+// point: with Field::constant it is the leaf's face_radiosity (the unknowns, piecewise constant);
+// with Field::interpolated it is the displayed field, the vertex_radiosity interpolated linearly
+// over the leaf's polygon fanned from its first vertex into triangles, as the rasterizer draws it
+// (Gouraud). The leaf is found (point in convex polygon in the patch's plane, with a relative
 // tolerance of 1e-6 of the patch size, which covers float-rounded PLY vertices); when none does (a gap in the mesh), the
 // leaf whose nearest edge is least violated is used and the sample counts as `unmatched`.
 //
@@ -43,6 +46,9 @@ std::vector<SurfaceSample> patch_samples(const Scene& scene, int samples_per_pat
 
 enum class Emitters { include, exclude };
 
+/// Which field of a Solution is measured (see above).
+enum class Field { constant, interpolated };
+
 struct ErrorMetrics {
   double relative_l2 = 0.0;
   double relative_linf = 0.0;
@@ -54,21 +60,25 @@ struct ErrorMetrics {
 };
 
 /// Error of `solution` against `reference` (both on `scene`'s patches, any meshes).
+/// Both solutions are evaluated as `field`.
 ErrorMetrics compare_solutions(const Scene& scene, const Solution& solution, const Solution& reference,
-                               int samples_per_patch = 256, Emitters emitters = Emitters::include);
+                               int samples_per_patch = 256, Emitters emitters = Emitters::include,
+                               Field field = Field::constant);
 
-/// Error of `solution` against an analytic radiosity `reference(position, patch)`.
+/// Error of `solution` (evaluated as `field`) against an analytic radiosity `reference(position, patch)`.
 ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
                                  const std::function<Rgb(const Vec3&, int)>& reference, int samples_per_patch = 256,
-                                 Emitters emitters = Emitters::include);
+                                 Emitters emitters = Emitters::include, Field field = Field::constant);
 
-/// Looks up the constant leaf radiosity of a Solution at points of given patches (see above).
+/// Looks up a Solution's radiosity at points of given patches (see above).
 class SolutionSampler {
  public:
   SolutionSampler(const Scene& scene, const Solution& solution);
   /// The leaf of `patch` containing `x` (or the nearest, with *matched = false); -1 if the patch has no leaf.
   int leaf_at(const Vec3& x, int patch, bool* matched = nullptr) const;
-  Rgb value_at(const Vec3& x, int patch, bool* matched = nullptr) const;
+  Rgb value_at(const Vec3& x, int patch, bool* matched = nullptr, Field field = Field::constant) const;
+  /// The vertex radiosity of leaf `face` interpolated at `x` (Field::interpolated).
+  Rgb interpolated(int face, const Vec3& x) const;
 
  private:
   /// Per patch: leaves bucketed on a uniform grid over the patch's 2D bounds (in the plane basis

@@ -28,6 +28,13 @@ SolveOptions options_for(Method method, int threads) {
   return o;
 }
 
+// The lecture's substructuring: the input polygons shoot (N fixed), only the receivers are refined.
+double input_polygons_shoot(const Scene& scene) {
+  double largest = 0.0;
+  for (const Patch& p : scene.patches) largest = std::max(largest, p.area);
+  return largest;
+}
+
 // Leaves per patch of a solution.
 std::vector<std::size_t> leaves_per_patch(const Solution& s, std::size_t patches) {
   std::vector<std::size_t> count(patches, 0);
@@ -72,6 +79,7 @@ std::vector<CostRow> cost_rows(const Scene& scene, const CostOptions& options, c
     for (double n : m == Method::kFull ? options.element_counts : options.substructure_counts) {
       SolveOptions o = options_for(m, options.threads);
       o.max_area = area / n;
+      if (m == Method::kSubstructure) o.patch_area = input_polygons_shoot(scene);
       settings.push_back({"max_area", o});
     }
   for (double fraction : options.aeps_fractions) {
@@ -170,6 +178,7 @@ std::vector<FarRow> far_rows(const Scene& scene, const std::vector<int>& ks, dou
         o.feps = feps;
       } else {
         o.max_area = patch_area / k;
+        if (m == Method::kSubstructure) o.patch_area = input_polygons_shoot(scene);
       }
       report(progress, fmt::format("figure 3: k={} {}", k, to_string(m)));
       Solution s;

@@ -18,14 +18,15 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
   const double max_area = ctx.max_area();
   auto& figures = ctx.summary().figures;
   figures["max_area"] = max_area;
-  figures["patch_area"] = options.patch_area;
+  const double patch_area = options.patch_area > 0.0 ? options.patch_area : kAutoPatchAreaFraction * scene.total_area();
+  figures["patch_area"] = patch_area;
 
   // Shooting patches: the input polygons or their uniform subdivision; elements below them.
   std::vector<NodeId> patches;
   std::vector<std::vector<NodeId>> elements_of;
   {
     auto phase = ctx.phase("mesh");
-    if (options.patch_area > 0.0) h.subdivide_uniform(options.patch_area);
+    h.subdivide_uniform(patch_area);
     patches = h.all_leaves();
     for (NodeId p : patches) {
       h.subdivide_uniform(p, max_area);
