@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <numbers>
 #include <vector>
 #include <cassert>
 
-#include "hrad/formfactor/clip_polygon.h"
 #include "hrad/formfactor/gauss_legendre.h"
 #include "hrad/formfactor/polygon_quadrature.h"
+#include "hrad/formfactor/point_to_polygon.h"
 #include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/visibility/sampling.h"
@@ -73,51 +72,17 @@ void receiver_points(std::span<const Vec3> p, const Vec3& n, std::vector<detail:
   }
 }
 
-// F(dA(x) -> polygon) by Lambert's contour formula, F = 1/(2 pi) sum_i gamma_i n.(R_i+1 x R_i)/|R_i+1 x R_i|
-// (Cohen & Wallace 1993, eq. 4.16), after clipping the polygon to the front of x's tangent plane.
-// point_to_polygon() computes the same to ~1e-13 by refining where the sum cancels; a solver needs
-// far less, and the raw sum keeps each point's factors to a closed surface summing to 1 to rounding.
-double lambert_factor(const Vec3& x, const Vec3& n, std::span<const Vec3> polygon) {
-  thread_local std::vector<Vec3> r, clipped;
-  thread_local std::vector<double> height;
-  const std::size_t k = polygon.size();
-  r.resize(k);
-  height.resize(k);
-  bool any_above = false, any_below = false;
-  for (std::size_t i = 0; i < k; ++i) {
-    r[i] = polygon[i] - x;
-    height[i] = n.dot(r[i]);
-    any_above |= height[i] > 0.0;
-    any_below |= height[i] < 0.0;
-  }
-  if (!any_above) return 0.0;
-  // Only the polygon's front emits: x must lie strictly in front of its plane.
-  if (!(newell_normal(r).dot(r[0]) < 0.0)) return 0.0;
-  std::span<const Vec3> q(r);
-  if (any_below) {
-    detail::clip_to_half_space(r, height, clipped);
-    if (clipped.size() < 3) return 0.0;
-    q = clipped;
-  }
-  double sum = 0.0;
-  for (std::size_t i = 0; i < q.size(); ++i) {
-    const Vec3& a = q[i];
-    const Vec3& b = q[i + 1 == q.size() ? 0 : i + 1];
-    const Vec3 c = b.cross(a);
-    const double s = c.norm();
-    if (s > 0.0) sum += std::atan2(s, a.dot(b)) * n.dot(c) / s;
-  }
-  return sum / (2.0 * std::numbers::pi);
-}
-
-// (1/A) sum_k w_k F(dA_k -> source): fixed Gauss points on `receiver`, Lambert's formula to `source`.
+// (1/A) sum_k w_k F(dA_k -> source): fixed Gauss points on `receiver`, Lambert's contour formula to
+// `source` (point_to_polygon; Cohen & Wallace 1993, eq. 4.16). The plain contour sum, unrefined: a
+// solver needs far less than point_to_polygon's 1e-13 where the sum cancels, and the plain sum
+// keeps each point's factors to a closed surface summing to 1 to rounding.
 double contour_factor(std::span<const Vec3> receiver, std::span<const Vec3> source) {
   thread_local std::vector<detail::WeightedPoint> points;
   const Vec3 n = newell_normal(receiver).normalized();
   receiver_points(receiver, n, points);
   double sum = 0.0, area = 0.0;
   for (const detail::WeightedPoint& p : points) {
-    sum += p.weight * lambert_factor(p.x, n, source);
+    sum += p.weight * point_to_polygon(p.x, n, source, kLambertSumOnly);
     area += p.weight;  // the weights' own sum, so that factors to a closed surface sum to 1 exactly
   }
   return area > 0.0 ? std::max(0.0, sum / area) : 0.0;
