@@ -6,21 +6,18 @@
 #include <string>
 #include <vector>
 
+#include "hrad/solvers/hierarchical_leaf_factors.h"
 #include "hrad/solvers/hierarchical_refine.h"
 #include "hrad/solvers/solver_context.h"
 
 namespace hrad {
 namespace {
 
-/// Both directions of every stored interaction, in link order (gather sums in this order).
-std::vector<Link> directed_links(const std::vector<detail::LinkPair>& pairs) {
-  std::vector<Link> links;
-  links.reserve(2 * pairs.size());
-  for (const detail::LinkPair& pair : pairs) {
-    if (pair.estimate.value > 0.0) links.push_back({pair.p, pair.q, pair.estimate.value});
-    if (pair.estimate.reverse > 0.0) links.push_back({pair.q, pair.p, pair.estimate.reverse});
-  }
-  return links;
+/// Directed links: both directions of every stored interaction that carries a factor.
+std::size_t directed_link_count(const std::vector<detail::LinkPair>& pairs) {
+  std::size_t count = 0;
+  for (const detail::LinkPair& pair : pairs) count += (pair.estimate.value > 0.0) + (pair.estimate.reverse > 0.0);
+  return count;
 }
 
 /// Largest radiosity a closed scene can reach: with factors summing to at most 1 per element,
@@ -98,7 +95,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     return ctx.finish(h, 0, out);
   }
 
-  const detail::RefineTolerances tol{t.feps, t.bfeps, t.aeps};
+  const detail::RefineTolerances tol{t.feps, t.bfeps, t.aeps, detail::source_weights(scene, ctx.channels())};
   const int channels = ctx.channels();
   // Initial candidates: every pair of input patches (HSA: "for all patches p, q"); each pair is
   // refined once and its links are gathered both ways.
@@ -106,7 +103,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   const int n = static_cast<int>(scene.patches.size());
   work.reserve(static_cast<std::size_t>(n) * static_cast<std::size_t>(n - 1) / 2);
   for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n; ++j) work.push_back({h.root(i), h.root(j), false, {}});
+    for (int j = i + 1; j < n; ++j) work.push_back(detail::candidate(h.root(i), h.root(j)));
 
   std::vector<detail::LinkPair> pairs;
   std::vector<Link> links;
@@ -121,9 +118,13 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     ++passes;
     const bool changed = refined.splits > 0;
     pairs = std::move(refined.links);
-    links = directed_links(pairs);
+    {
+      auto phase = ctx.phase("leaf_factors");
+      links = detail::leaf_links(h, pairs);
+    }
     ctx.progress("hierarchical: pass " + std::to_string(passes) + ": " + std::to_string(h.size()) + " nodes, " +
-                 std::to_string(links.size()) + " links");
+                 std::to_string(directed_link_count(pairs)) + " links, " + std::to_string(links.size()) +
+                 " leaf factors");
     // A re-refinement that changed nothing leaves the last solution consistent with its links.
     if (passes > 1 && !changed) break;
     if (!solve_links(ctx, h, links, bound)) break;
@@ -146,9 +147,10 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   }
   figures["refine_passes"] = passes;
   figures["link_pairs"] = static_cast<double>(pairs.size());
+  figures["leaf_links"] = static_cast<double>(links.size());
   figures["min_element_area"] = min_area;
   figures["max_depth"] = max_depth;
-  SolveSummary summary = ctx.finish(h, links.size(), out);
+  SolveSummary summary = ctx.finish(h, directed_link_count(pairs), out);
   if (out != nullptr && options.record_links) {
     // One segment per link pair, between the elements' centroids (for figures of the links).
     out->link_segments.clear();

@@ -33,9 +33,9 @@
 namespace hrad {
 
 /// Form-factor tolerance used when neither --feps nor --bfeps is given.
-inline constexpr double kAutoFeps = 0.005;
+inline constexpr double kAutoFeps = 0.01;
 /// Smallest element area when --aeps is 0: this fraction of the scene's total area.
-inline constexpr double kAutoAepsFraction = 1.0 / 500.0;
+inline constexpr double kAutoAepsFraction = 1.0 / 1000.0;
 /// BF refinement re-refines after each solve at most this many times (HSA sec. 4.2).
 inline constexpr int kMaxRefinePasses = 8;
 

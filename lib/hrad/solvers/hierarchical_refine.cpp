@@ -1,7 +1,12 @@
 #include "hrad/solvers/hierarchical_refine.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <utility>
+
+#include "hrad/formfactor/point_to_polygon.h"
+#include "hrad/geometry/polygon.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -25,9 +30,10 @@ Decision decide(const ElementHierarchy& h, const RefineCandidate& c, const Refin
   if (!pair_needs_refinement(h, c, tol, channels)) return Decision::kLink;
   const ElementNode& p = h.node(c.p);
   const ElementNode& q = h.node(c.q);
-  // HSA 1991 Refine splits q when F(p->q) > F(q->p), i.e. (reciprocity) the larger element;
-  // areas decide the same without relying on a factor that visibility may have zeroed.
-  const bool q_first = q.area > p.area;
+  // Split the element over which the factor varies more (its children's links then vary less);
+  // when neither varies beyond the tolerance (the visibility error decided), the larger one, as
+  // HSA 1991 Refine does (F(p->q) > F(q->p) means, by reciprocity, that q is larger).
+  const bool q_first = c.variation_q != c.variation_p ? c.variation_q > c.variation_p : q.area > p.area;
   if (q_first) {
     if (can_split(q, tol.aeps)) return Decision::kSplitQ;
     if (can_split(p, tol.aeps)) return Decision::kSplitP;
@@ -40,26 +46,103 @@ Decision decide(const ElementHierarchy& h, const RefineCandidate& c, const Refin
 
 }  // namespace
 
+PointFactorSpread factor_variation(std::span<const Vec3> receiver, std::span<const Vec3> source, double average) {
+  const Vec3 n = newell_normal(receiver).normalized();
+  const std::size_t k = receiver.size();
+  PointFactorSpread spread;
+  auto sample = [&](const Vec3& x) {
+    const double f = point_to_polygon(x, n, source);
+    spread.deviation = std::max(spread.deviation, std::abs(f - average));
+    spread.largest = std::max(spread.largest, f);
+  };
+  sample(polygon_centroid(receiver));
+  for (std::size_t i = 0; i < k; ++i) {
+    const Vec3& a = receiver[i];
+    const Vec3& b = receiver[i + 1 == k ? 0 : i + 1];
+    sample(a);
+    sample(0.5 * (a + b));
+  }
+  return spread;
+}
+
+void evaluate_candidate(const ElementHierarchy& h, const FormFactorEvaluator& evaluator, RefineCandidate& c) {
+  const ElementNode& p = h.node(c.p);
+  const ElementNode& q = h.node(c.q);
+  c.estimate = evaluator.estimate(p.polygon(), p.patch, q.polygon(), q.patch);
+  c.evaluated = true;
+  c.variation_p = c.variation_q = 0.0;
+  const FormFactorEstimate& e = c.estimate;
+  // Facing away, hidden or coplanar: dropped, nothing to bound. A partly visible pair whose samples
+  // all hit an occluder has value 0 but an error, and is bounded below.
+  if (e.facing_away || (e.value <= 0.0 && e.reverse <= 0.0 && e.error <= 0.0)) return;
+  const double f_pq = e.unoccluded;
+  const double f_qp = e.unoccluded * p.area / q.area;  // reciprocity
+  const PointFactorSpread s_p = factor_variation(p.polygon(), q.polygon(), f_pq);
+  const PointFactorSpread s_q = factor_variation(q.polygon(), p.polygon(), f_qp);
+  if (e.visibility >= 1.0) {
+    c.variation_p = s_p.deviation;
+    c.variation_q = s_q.deviation;
+  } else {
+    // Partly visible: a shadow boundary may cross the receiver, and every point of it gets the
+    // pair's mean visible fraction, so a point's error can be as large as its unoccluded factor.
+    c.variation_p = std::max(e.visibility * s_p.deviation, s_p.largest);
+    c.variation_q = std::max(e.visibility * s_q.deviation, s_q.largest);
+  }
+}
+
 bool pair_needs_refinement(const ElementHierarchy& h, const RefineCandidate& c, const RefineTolerances& tol,
                            int channels) {
   const FormFactorEstimate& e = c.estimate;
   const ElementNode& p = h.node(c.p);
   const ElementNode& q = h.node(c.q);
-  const double f_pq = e.value;
-  const double f_qp = e.reverse;
-  // The visibility error of F(q->p) by reciprocity: A_p F(p->q) = A_q F(q->p).
+  // What p gathers is F(p->q) B_q: its error is the factor's variation over p (and, by reciprocity,
+  // the variation over q times q's variation of B) plus the visibility error, whose bound for
+  // F(q->p) follows by reciprocity: A_p F(p->q) = A_q F(q->p).
   const double err_pq = e.error;
   const double err_qp = e.error * p.area / q.area;
+  const double error_p = c.variation_p + err_pq;  // of what p gathers from q, per unit B_q
+  const double error_q = c.variation_q + err_qp;
   if (tol.feps > 0.0) {
-    if (std::max({f_pq, f_qp, err_pq, err_qp}) > tol.feps) return true;
+    const double w_p = tol.source_weight.empty() ? 1.0 : tol.source_weight[static_cast<std::size_t>(p.patch)];
+    const double w_q = tol.source_weight.empty() ? 1.0 : tol.source_weight[static_cast<std::size_t>(q.patch)];
+    if (std::max(w_q * error_p, w_p * error_q) > tol.feps) return true;
   }
   if (tol.bfeps > 0.0) {
     // HSA 1991 sec. 4.2: what p gathers from q is B_q F(p->q), and the other way round.
     const double b_p = brightest(p, channels);
     const double b_q = brightest(q, channels);
-    if (std::max({b_q * f_pq, b_p * f_qp, b_q * err_pq, b_p * err_qp}) > tol.bfeps) return true;
+    if (std::max(b_q * error_p, b_p * error_q) > tol.bfeps) return true;
   }
   return false;
+}
+
+std::vector<double> source_weights(const Scene& scene, int channels) {
+  Rgb emitted = Rgb::Zero(), reflectance = Rgb::Zero();
+  double area = 0.0;
+  for (const Patch& p : scene.patches) {
+    const Material& m = scene.material_of(p);
+    emitted += p.area * m.emission;
+    reflectance += p.area * m.reflectance;
+    area += p.area;
+  }
+  std::vector<double> weights(scene.patches.size(), 1.0);
+  if (area <= 0.0) return weights;
+  // Closed-room radiosity of the mean emission and reflectance (rhobar capped: a lossless scene
+  // with light in it has no finite mean, and the weights only need to rank sources).
+  const Rgb rho_bar = (reflectance / area).min(0.999);
+  const Rgb b_mean = (emitted / area) / (1.0 - rho_bar);
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    const Material& m = scene.material_of(scene.patches[i]);
+    double w = 0.0;
+    bool any = false;
+    for (int c = 0; c < channels; ++c) {
+      if (!(b_mean[c] > 0.0)) continue;
+      w = std::max(w, m.emission[c] / b_mean[c] + m.reflectance[c]);
+      any = true;
+    }
+    if (any) weights[i] = w;
+  }
+  return weights;
 }
 
 RefineResult refine_pairs(ElementHierarchy& h, const FormFactorEvaluator& evaluator, std::vector<RefineCandidate> work,
@@ -73,11 +156,7 @@ RefineResult refine_pairs(ElementHierarchy& h, const FormFactorEvaluator& evalua
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
                           RefineCandidate& c = work[i];
-                          if (c.evaluated) continue;
-                          const ElementNode& p = h.node(c.p);
-                          const ElementNode& q = h.node(c.q);
-                          c.estimate = evaluator.estimate(p.polygon(), p.patch, q.polygon(), q.patch);
-                          c.evaluated = true;
+                          if (!c.evaluated) evaluate_candidate(h, evaluator, c);
                         }
                       });
     next.clear();
@@ -92,13 +171,13 @@ RefineResult refine_pairs(ElementHierarchy& h, const FormFactorEvaluator& evalua
         case Decision::kSplitP: {
           ++result.splits;
           const NodeId child = h.split(c.p);
-          for (NodeId k = 0; k < 4; ++k) next.push_back({child + k, c.q, false, {}});
+          for (NodeId k = 0; k < 4; ++k) next.push_back(candidate(child + k, c.q));
           break;
         }
         case Decision::kSplitQ: {
           ++result.splits;
           const NodeId child = h.split(c.q);
-          for (NodeId k = 0; k < 4; ++k) next.push_back({c.p, child + k, false, {}});
+          for (NodeId k = 0; k < 4; ++k) next.push_back(candidate(c.p, child + k));
           break;
         }
       }

@@ -1,7 +1,19 @@
 // Refinement of element pairs into links for hierarchical radiosity (HSA 1991, "Refine").
+//
+// The oracle bounds the error a link makes, not the size of its factor. A link gives every point
+// of p the area-averaged factor F(p -> q) (and every point of q the average F(q -> p)); its error
+// is how far the point-to-element factor F(x -> q) of points x of p strays from that average
+// (HSA 1991 sec. 4 on the error of constant links; Lischinski, Smits & Greenberg 1994, "Bounds and
+// error estimates for radiosity", sec. 3; Holzschuch & Sillion 1998, "An exhaustive error-bounding
+// algorithm for hierarchical radiosity", sec. 3). The same variation is the error of gathering q's
+// mean radiosity when B varies over q: by reciprocity the kernel p sees on q is proportional to
+// F(y -> p), y on q. We estimate it at the vertices, edge midpoints and centroid of each element
+// (the points its children's corners will be) with Lambert's point-to-polygon formula, which costs
+// about a tenth of one analytic polygon-to-polygon factor per point.
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "hrad/mesh/element_hierarchy.h"
@@ -16,7 +28,21 @@ struct RefineCandidate {
   NodeId q = kNoNode;
   bool evaluated = false;
   FormFactorEstimate estimate;  ///< receiver p, source q
+  /// Error bound of the factor p's points get, F(p -> q): the largest |F(x -> q) - F(p -> q)| over
+  /// p's sample points x times the visible fraction; for a partly visible pair at least the
+  /// largest F(x -> q) (a shadow boundary may cross p).
+  double variation_p = 0.0;
+  /// The same for q's points and F(q -> p).
+  double variation_q = 0.0;
 };
+
+/// A fresh candidate for the pair (p, q).
+inline RefineCandidate candidate(NodeId p, NodeId q) {
+  RefineCandidate c;
+  c.p = p;
+  c.q = q;
+  return c;
+}
 
 /// A stored interaction between p and q: p gathers from q with estimate.value = F(p -> q) and q
 /// gathers from p with estimate.reverse = F(q -> p).
@@ -26,7 +52,19 @@ struct RefineTolerances {
   double feps = 0.0;   ///< 0 = no form-factor test
   double bfeps = 0.0;  ///< 0 = no B*F test
   double aeps = 0.0;   ///< a node is split only when its children's area stays >= aeps
+  /// Per patch: the feps test compares a link's factor error times the weight of its source's
+  /// patch (see source_weights()); empty = weight 1 everywhere.
+  std::vector<double> source_weight;
 };
+
+/// The weights of the feps test: a priori radiosity of each patch relative to the scene's,
+/// w = max over channels of (E / B_mean + rho), with B_mean = Ebar / (1 - rhobar) the closed-room
+/// radiosity of the area-mean emission and reflectance. What p gathers through a link is B_q times
+/// the factor, so B_q / B_mean turns a factor error into a relative radiosity error; B_q is estimated
+/// before solving as E_q + rho_q B_mean. In a closed room with uniform E and rho every weight is 1
+/// (plain feps); in the Cornell box the light's is ~40 and the white walls' 0.74. All 1 when
+/// nothing emits. Only the channels `channels` counts (1 or 3).
+std::vector<double> source_weights(const Scene& scene, int channels);
 
 struct RefineResult {
   std::vector<LinkPair> links;
@@ -42,8 +80,21 @@ struct RefineResult {
 RefineResult refine_pairs(ElementHierarchy& hierarchy, const FormFactorEvaluator& evaluator,
                           std::vector<RefineCandidate> work, const RefineTolerances& tolerances, int channels);
 
-/// True when the pair must be refined further under `tolerances` (HSA 1991 Refine; BF variant of
-/// sec. 4.2), using the current radiosity of p and q for the B*F test.
+/// Point-to-polygon factors F(x -> source) over the sample points x of a receiver (its vertices,
+/// edge midpoints and centroid; point_to_polygon() with the receiver's normal; points in the
+/// source's plane, e.g. on a shared edge, count as 0, which only makes the spread larger).
+struct PointFactorSpread {
+  double deviation = 0.0;  ///< largest |F(x -> source) - average|
+  double largest = 0.0;    ///< largest F(x -> source)
+};
+PointFactorSpread factor_variation(std::span<const Vec3> receiver, std::span<const Vec3> source, double average);
+
+/// Fills c.estimate, c.variation_p and c.variation_q (c.evaluated = true).
+void evaluate_candidate(const ElementHierarchy& hierarchy, const FormFactorEvaluator& evaluator, RefineCandidate& c);
+
+/// True when the pair must be refined further under `tolerances`: the factors' variation (see the
+/// file comment) or their visibility error exceeds feps, or either times the source's current
+/// radiosity exceeds bfeps (HSA 1991 sec. 4.2's B*F test, applied to the error).
 bool pair_needs_refinement(const ElementHierarchy& hierarchy, const RefineCandidate& pair,
                            const RefineTolerances& tolerances, int channels);
 
