@@ -22,6 +22,10 @@
 //                          Lambert's exact point-to-polygon formula) or analytic (closed-form
 //                          polygon-to-polygon, ~1e-13, much slower)
 //   --visibility-samples K point pairs per partially visible pair (default 16)
+//   --clustering auto|on|off
+//                          hierarchical: a cluster hierarchy above the input polygons, linked from
+//                          one root self-link (Smits, Arvo & Greenberg 1994), or plain HSA with every
+//                          pair of input polygons linked first; auto (default) clusters from 200 patches
 //   --threads N            worker threads (default: all cores)
 //   --report R.json        the solve report (see lib/hrad/report/report_json.h)
 //   --out S.ply            the leaf mesh with tone-mapped vertex colours and per-face radiosity
@@ -47,7 +51,8 @@ namespace hrad::cli {
 void add_solve_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("solve", "Solve the radiosity of a scene (full, substructure or hierarchical)");
   struct Args {
-    std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", kernel = "contour", report, out;
+    std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", kernel = "contour", clustering = "auto",
+                report, out;
     double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
     int max_iterations = 10000, visibility_samples = 16, threads = 0;
     bool quiet = false;
@@ -66,6 +71,7 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--effects", args->effects, "auto | all (default auto)");
   cmd->add_option("--kernel", args->kernel, "Form-factor kernel: contour (default) | analytic");
   cmd->add_option("--visibility-samples", args->visibility_samples, "Point pairs per partially visible pair (default 16)");
+  cmd->add_option("--clustering", args->clustering, "Hierarchical: auto | on | off (default auto: on from 200 patches)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--report", args->report, "Write the solve report (JSON) here");
   cmd->add_option("--out", args->out, "Write the leaf mesh (PLY) here");
@@ -77,6 +83,7 @@ void add_solve_command(CLI::App& app) {
     o.linear_solver = parse_linear_solver(args->linear_solver);
     o.effects = parse_effects_mode(args->effects);
     o.kernel = parse_kernel(args->kernel);
+    o.clustering = parse_clustering(args->clustering);
     // Given on the command line, an area or tolerance must be a positive number (0 is "automatic"
     // only when the option is left out).
     for (const auto& [name, value] : {std::pair<const char*, double>{"--max-area", args->max_area},

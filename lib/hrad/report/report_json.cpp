@@ -27,6 +27,7 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
                   {"effects", std::string(to_string(options.effects))},
                   {"kernel", std::string(to_string(options.kernel))},
                   {"visibility_samples", options.visibility_samples},
+                  {"clustering", std::string(to_string(options.clustering))},
                   {"threads", options.threads}};
   j["termination"] = std::string(to_string(summary.termination));
   j["status"] = std::string(to_string(summary.termination));

@@ -13,7 +13,7 @@ namespace hrad {
 
 /// The report of one solve:
 ///   scene, method, options {max_area, patch_area, feps, bfeps, aeps, tolerance, max_iterations,
-///     linear_solver, effects, visibility_samples, threads},
+///     linear_solver, effects, kernel, visibility_samples, clustering, threads},
 ///   termination ("converged" | "max_iterations" | "direct" | "failed"), status (the same), message,
 ///   iterations, elements, links, patch_count (Scene::patches), form_factor_evaluations, visibility_queries,
 ///   seconds {total, <phase>: s, ...}, effects {visibility, color_channels, bounces, cull_facing_away, reasons},

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "hrad/core/error.h"
+#include "hrad/solvers/clustered_hierarchical.h"
 #include "hrad/solvers/full_matrix.h"
 #include "hrad/solvers/hierarchical.h"
 #include "hrad/solvers/substructuring.h"
@@ -54,6 +55,8 @@ void validate_options(const SolveOptions& o) {
     throw Error(fmt::format("--kernel: unknown kernel {}", static_cast<int>(o.kernel)));
   if (o.visibility_samples < 1)
     throw Error(fmt::format("--visibility-samples must be >= 1, got {}", o.visibility_samples));
+  if (o.clustering != Clustering::kAuto && o.clustering != Clustering::kOn && o.clustering != Clustering::kOff)
+    throw Error(fmt::format("--clustering: unknown mode {}", static_cast<int>(o.clustering)));
   if (o.threads < 0) throw Error(fmt::format("--threads must be >= 0 (0 = all cores), got {}", o.threads));
 }
 
@@ -65,6 +68,7 @@ SolveSummary solve(const Scene& scene, const SolveOptions& options, Solution* ou
     case Method::kSubstructure:
       return solve_substructuring(scene, options, out);
     case Method::kHierarchical:
+      if (uses_clustering(scene, options)) return solve_clustered_hierarchical(scene, options, out);
       return solve_hierarchical(scene, options, out);
   }
   throw Error("--method: unknown method");
@@ -132,6 +136,22 @@ FormFactorKernel parse_kernel(std::string_view text) {
   if (text == "analytic") return FormFactorKernel::kAnalytic;
   if (text == "contour") return FormFactorKernel::kPointContour;
   throw Error(fmt::format("--kernel must be analytic or contour, got '{}'", text));
+}
+
+std::string_view to_string(Clustering clustering) {
+  switch (clustering) {
+    case Clustering::kAuto: return "auto";
+    case Clustering::kOn: return "on";
+    case Clustering::kOff: return "off";
+  }
+  return "unknown";
+}
+
+Clustering parse_clustering(std::string_view text) {
+  if (text == "auto") return Clustering::kAuto;
+  if (text == "on") return Clustering::kOn;
+  if (text == "off") return Clustering::kOff;
+  throw Error(fmt::format("--clustering must be auto, on or off, got '{}'", text));
 }
 
 EffectsMode parse_effects_mode(std::string_view text) {

@@ -30,6 +30,17 @@ enum class LinearSolver {
   kGaussSeidel,  ///< the same, each element using the newest values
 };
 
+/// Hierarchical radiosity above the input polygons (Smits, Arvo & Greenberg 1994).
+enum class Clustering {
+  kAuto,  ///< on when the scene has at least kAutoClusteringPatches patches
+  kOn,    ///< a cluster hierarchy over the patches, linked from one root self-link
+  kOff,   ///< plain HSA: every pair of input patches is an initial link (k^2)
+};
+
+/// Clustering::kAuto turns clustering on from this many patches (below it the k^2 initial pairs
+/// are cheap and plain HSA is the reference).
+inline constexpr std::size_t kAutoClusteringPatches = 200;
+
 struct SolveOptions {
   Method method = Method::kHierarchical;
   /// Full matrix and substructuring: largest element area (scene units squared); 0 = automatic:
@@ -59,6 +70,8 @@ struct SolveOptions {
   /// Hierarchical: also return each link pair as a segment between element centroids
   /// (Solution::link_segments), for figures.
   bool record_links = false;
+  /// Hierarchical: clustering above the input polygons (see Clustering).
+  Clustering clustering = Clustering::kAuto;
   /// Worker threads for the parallel phases; 0 = TBB's default (all cores).
   int threads = 0;
   /// Called with one line of progress for long phases (the CLI prints it on stderr); may be empty.
@@ -111,6 +124,9 @@ std::string_view to_string(Termination termination);
 std::string_view to_string(LinearSolver solver);
 std::string_view to_string(EffectsMode mode);
 std::string_view to_string(FormFactorKernel kernel);
+std::string_view to_string(Clustering clustering);
+/// Parses "auto" | "on" | "off"; throws hrad::Error naming --clustering otherwise.
+Clustering parse_clustering(std::string_view text);
 /// Parses "analytic" | "contour"; throws hrad::Error naming --kernel otherwise.
 FormFactorKernel parse_kernel(std::string_view text);
 /// Parses "full" | "substructure" | "hierarchical"; throws hrad::Error naming --method otherwise.
