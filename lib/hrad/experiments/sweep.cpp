@@ -2,13 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
+#include <unordered_map>
 #include <set>
 
 #include <fmt/format.h>
 
 #include "hrad/analysis/error_metrics.h"
 #include "hrad/core/error.h"
+#include "hrad/core/stopwatch.h"
+#include "hrad/experiments/final_gather.h"
 
 namespace hrad {
 namespace {
@@ -91,6 +95,19 @@ Reference make_reference(const Scene& scene, const SweepOptions& options) {
   o.visibility_samples = 4 * o.visibility_samples;
   Reference ref;
   ref.summary = solve(scene, o, &ref.solution);
+  if (options.final_gather) {
+    const std::vector<SurfaceSample> samples = patch_samples(scene, options.samples_per_patch);
+    FinalGatherOptions g;
+    g.threads = options.threads;
+    g.visibility_samples = o.visibility_samples;
+    if (options.progress)
+      g.progress = [&](std::size_t done, std::size_t all) {
+        options.progress(static_cast<int>(done), static_cast<int>(all), "reference: final gather at the samples");
+      };
+    Stopwatch watch;
+    ref.gathered = final_gather_reflected(scene, ref.solution, samples, g);
+    ref.gather_seconds = watch.seconds();
+  }
   ref.solution = reflected_part(scene, std::move(ref.solution));
   ref.description = {
       {"kind", "converged solution computed independently of the runs judged"},
@@ -107,6 +124,14 @@ Reference make_reference(const Scene& scene, const SweepOptions& options) {
       {"seconds", ref.summary.total_seconds},
       {"termination", std::string(to_string(ref.summary.termination))},
       {"samples_per_patch", options.samples_per_patch},
+      {"final_gather", options.final_gather},
+      {"final_gather_seconds", ref.gather_seconds},
+      {"judged_against",
+       options.final_gather
+           ? "the reference solution's final gather at each sample: B(x) - E(x) = rho(x) sum_j F(x->j) V(x,j) B_j over "
+             "its elements j, Lambert's exact point-to-polygon factor, visibility by stratified points per partly "
+             "visible element (lib/hrad/experiments/final_gather.h)"
+           : "the reference solution's own field (constant or interpolated, as the run)"},
       {"error_definition",
        "relative_l2 = sqrt(sum_k w_k |B(x_k)-Bref(x_k)|^2 / sum_k w_k |Bref(x_k)|^2), relative_linf = "
        "max_k |B-Bref| / max_k |Bref|, over fixed stratified samples x_k on every patch "
@@ -117,8 +142,51 @@ Reference make_reference(const Scene& scene, const SweepOptions& options) {
   return ref;
 }
 
+namespace {
+
+// A sample's position as a key (patch_samples() is deterministic, so the runs' samples are the
+// reference's to the bit).
+struct SampleKey {
+  std::size_t operator()(const std::pair<int, Vec3>& k) const {
+    std::size_t h = std::hash<int>()(k.first);
+    for (int c = 0; c < 3; ++c) {
+      std::uint64_t bits = 0;
+      std::memcpy(&bits, &k.second[c], sizeof bits);
+      h = h * 1000003u ^ std::hash<std::uint64_t>()(bits);
+    }
+    return h;
+  }
+};
+using GatheredLookup = std::unordered_map<std::pair<int, Vec3>, Rgb, SampleKey>;
+
+GatheredLookup gathered_lookup(const Scene& scene, const Reference& reference, int samples_per_patch) {
+  GatheredLookup lookup;
+  if (reference.gathered.empty()) return lookup;
+  const std::vector<SurfaceSample> samples = patch_samples(scene, samples_per_patch);
+  for (std::size_t i = 0; i < samples.size(); ++i) lookup[{samples[i].patch, samples[i].position}] = reference.gathered[i];
+  return lookup;
+}
+
+// Error of a run against the reference: its final gather at the samples when there is one (a point
+// off the samples, the centroid of a leaf no sample falls in, takes the reference's own field).
+ErrorMetrics judge(const Scene& scene, const Solution& run, const Reference& reference, const GatheredLookup& lookup,
+                   int samples_per_patch, Field field) {
+  if (lookup.empty()) return compare_solutions(scene, run, reference.solution, samples_per_patch, Emitters::include, field);
+  const SolutionSampler fallback(scene, reference.solution);
+  return compare_to_function(
+      scene, run,
+      [&](const Vec3& x, int patch) {
+        const auto it = lookup.find({patch, x});
+        return it != lookup.end() ? it->second : fallback.value_at(x, patch, nullptr, field);
+      },
+      samples_per_patch, Emitters::include, field);
+}
+
+}  // namespace
+
 std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, const SweepOptions& options) {
   const auto settings = sweep_settings(scene, options);
+  const GatheredLookup lookup = gathered_lookup(scene, reference, options.samples_per_patch);
   std::vector<SweepRow> rows;
   int done = 0;
   for (const auto& [method, setting] : settings) {
@@ -128,9 +196,8 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
     Solution solution;
     const SolveSummary s = solve(scene, setting.options, &solution);
     const Solution reflected = reflected_part(scene, std::move(solution));
-    const ErrorMetrics e = compare_solutions(scene, reflected, reference.solution, options.samples_per_patch);
-    const ErrorMetrics smooth = compare_solutions(scene, reflected, reference.solution, options.samples_per_patch,
-                                                  Emitters::include, Field::interpolated);
+    const ErrorMetrics e = judge(scene, reflected, reference, lookup, options.samples_per_patch, Field::constant);
+    const ErrorMetrics smooth = judge(scene, reflected, reference, lookup, options.samples_per_patch, Field::interpolated);
     SweepRow row;
     row.method = std::string(to_string(method));
     row.parameter = setting.parameter;

@@ -40,7 +40,11 @@ struct SweepRow {
 /// any full-matrix run of the sweep, with four times their visibility samples (so it shares the
 /// kernels but no discretisation with the runs).
 struct Reference {
-  Solution solution;
+  Solution solution;  ///< reflected part B - E
+  /// With SweepOptions::final_gather: B - E gathered from `solution` at the error samples
+  /// (patch_samples(scene, samples_per_patch), in order); runs are judged against these instead.
+  std::vector<Rgb> gathered;
+  double gather_seconds = 0.0;
   SolveSummary summary;
   nlohmann::json description;  ///< how it was made (method, max_area, elements, seconds, ...)
 };
@@ -60,6 +64,9 @@ struct SweepOptions {
   /// Visibility point pairs per partly visible pair in every run (0 = the solvers' default); the
   /// reference uses four times as many.
   int visibility_samples = 0;
+  /// Judge runs against the reference solution's final gather at the samples
+  /// (experiments/final_gather.h) instead of its own field.
+  bool final_gather = true;
   int threads = 0;
   /// Progress: (runs done, runs in all, what runs now).
   std::function<void(int, int, std::string_view)> progress;

@@ -1,0 +1,36 @@
+// Final gather: the radiosity of a solved scene reconstructed at given points by one more bounce,
+//   B(x) = E(x) + rho(x) * sum_j F(x -> j) V(x, j) B_j,
+// over the leaves j of the solution, with Lambert's exact point-to-polygon factor and the fraction
+// of leaf j visible from x. The piecewise-constant B_j enter only through an integral, so the
+// result is far smoother and more accurate than B_j itself, and shadow boundaries are resolved at
+// the points, not at the elements (Reichert 1992, "A two-pass radiosity method driven by lights and
+// viewer position"; Lischinski, Tampieri & Greenberg 1993, "Combining hierarchical radiosity and
+// discontinuity meshing"; Cohen & Wallace 1993, "Radiosity and realistic image synthesis", sec. 9.3).
+// hrad uses it to make sweep references that no run shares (experiments/sweep.h).
+#pragma once
+
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "hrad/analysis/error_metrics.h"
+#include "hrad/core/scene.h"
+#include "hrad/core/solution.h"
+
+namespace hrad {
+
+struct FinalGatherOptions {
+  /// Stratified points per leaf when the leaf is partly visible from x (Visibility::estimate_from_point);
+  /// leaves classified fully visible or hidden from x need none.
+  int visibility_samples = 64;
+  int threads = 0;  ///< 0 = all cores
+  /// Progress: (points done, points in all).
+  std::function<void(std::size_t, std::size_t)> progress;
+};
+
+/// The reflected radiosity B(x) - E(x) at each point (samples on the scene's patches), gathered
+/// from `solution`'s leaves (their face_radiosity, emission included). Deterministic.
+std::vector<Rgb> final_gather_reflected(const Scene& scene, const Solution& solution,
+                                        std::span<const SurfaceSample> points, const FinalGatherOptions& options);
+
+}  // namespace hrad
