@@ -33,7 +33,8 @@ namespace {
 
 // x log x style terms vanish at 0; ln(0) must not turn them into NaN.
 inline double log_or_zero(double r2) { return r2 > 0.0 ? std::log(r2) : 0.0; }
-inline double h_atan(double h, double x) { return h > 0.0 ? h * std::atan(x / h) : 0.0; }
+// h atan(x / h) for h >= 0, as atan2 of |x| and h (no rounding of x / h; fast_atan2.h).
+inline double h_atan(double h, double x) { return h > 0.0 ? h * std::copysign(fast_atan2(std::abs(x), h), x) : 0.0; }
 
 // T(x) up to a multiple of x^2 - h^2 that cancels in the four-term sum. With h large against x,
 // ln(x^2 + h^2) = ln h^2 + log1p(x^2/h^2): the ln h^2 part sums to Lp Lq ln(h^2) / 2 exactly, and
@@ -70,9 +71,10 @@ EdgePairIntegral parallel_pair(const Vec3& p0, const Vec3& a, double lp, const V
 // Adds the absolute sizes of its terms to *magnitude.
 double log_part(double alpha, double c, double rho, double s0, double s1, double r2_0, double r2_1,
                 double* magnitude) {
-  auto l1 = [&](double s, double r2) { return 0.5 * s * log_or_zero(r2) - s + h_atan(rho, s); };
-  auto l2 = [&](double s, double r2) { return 0.25 * r2 * log_or_zero(r2) - 0.25 * s * s; };
-  const double a1 = l1(s1, r2_1), a0 = l1(s0, r2_0), b1 = l2(s1, r2_1), b0 = l2(s0, r2_0);
+  const double lg1 = log_or_zero(r2_1), lg0 = log_or_zero(r2_0);  // each once (libm calls are not merged)
+  auto l1 = [&](double s, double lg) { return 0.5 * s * lg - s + h_atan(rho, s); };
+  auto l2 = [&](double s, double r2, double lg) { return 0.25 * r2 * lg - 0.25 * s * s; };
+  const double a1 = l1(s1, lg1), a0 = l1(s0, lg0), b1 = l2(s1, r2_1, lg1), b0 = l2(s0, r2_0, lg0);
   // Each ln carries an absolute rounding error ~eps: count its coefficients too.
   *magnitude += std::abs(alpha) * (std::abs(a1) + std::abs(a0) + 0.5 * (std::abs(s1) + std::abs(s0))) +
                 std::abs(c) * (std::abs(b1) + std::abs(b0) + 0.25 * (r2_1 + r2_0));
@@ -122,6 +124,23 @@ double gauss(const SkewPair& e, double lo, double hi, int n) {
   return sum * half;
 }
 
+// The Gauss order for a panel whose nearest singularity has semi-major axis a: the smallest n with
+// rho^(-2n) <= 1e-16, i.e. n ln(rho) >= kLogTarget, i.e. a >= cosh(kLogTarget / n) (rho = a +
+// sqrt(a^2 - 1), ln rho = acosh a). Thresholds instead of a logarithm per panel; 0 when more
+// than kMaxOrder nodes would be needed.
+const std::array<double, kMaxOrder + 1> kOrderThreshold = [] {
+  std::array<double, kMaxOrder + 1> t{};
+  for (int n = 1; n <= kMaxOrder; ++n) t[static_cast<std::size_t>(n)] = std::cosh(kLogTarget / n);
+  return t;
+}();
+
+int gauss_order(double a) {
+  if (!(a >= kOrderThreshold[kMaxOrder])) return 0;
+  int n = kMinOrder;
+  while (a < kOrderThreshold[static_cast<std::size_t>(n)]) ++n;
+  return n;
+}
+
 double panels(const SkewPair& e, double lo, double hi, double min_length) {
   double a = INFINITY;
   int worst = 0;
@@ -130,13 +149,10 @@ double panels(const SkewPair& e, double lo, double hi, double min_length) {
     if (ak < a) a = ak, worst = k;
   }
   const double len = hi - lo;
-  const double rho = a + std::sqrt(std::max(0.0, (a - 1.0) * (a + 1.0)));
-  const double need = rho > 1.0 ? kLogTarget / std::log(rho) : INFINITY;
-  if (need <= kMaxOrder || len <= min_length)
-    // Clamp before the cast: `need` is infinite when a singularity lies on a panel already at the
-    // minimum length (found by the polygon-pair fuzzer: a cast of inf to int is undefined).
-    return gauss(e, lo, hi,
-                 static_cast<int>(std::clamp(std::ceil(need), double(kMinOrder), double(kMaxOrder))));
+  const int order = gauss_order(a);
+  if (order > 0) return gauss(e, lo, hi, order);
+  // A singularity on a panel already at the minimum length: as many nodes as allowed.
+  if (len <= min_length) return gauss(e, lo, hi, kMaxOrder);
   // Split at the singularity's abscissa when it lies well inside, else grade towards the end.
   const double x = e.singular[worst].re;
   double split;
