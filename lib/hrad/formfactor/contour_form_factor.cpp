@@ -2,27 +2,48 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "hrad/formfactor/edge_pair_integral.h"
 
 namespace hrad::detail {
 
 ContourSum contour_area_factor(std::span<const Vec3> from, std::span<const Vec3> to) {
-  double sum = 0.0, magnitude = 0.0;
   const std::size_t m = from.size(), n = to.size();
+  // Per-edge and per-(edge, vertex) quantities, computed once and shared by the edge pairs (an edge
+  // of `from` and a vertex of `to` serve the two edges of `to` that meet there); the endpoint terms
+  // lazily, since parallel and perpendicular pairs do not use them.
+  thread_local std::vector<Segment> edges_from, edges_to;
+  thread_local std::vector<EndpointTerms> terms;
+  thread_local std::vector<char> ready;
+  edges_from.resize(m);
+  edges_to.resize(n);
+  for (std::size_t i = 0; i < m; ++i) edges_from[i] = make_segment(from[i], from[i + 1 == m ? 0 : i + 1]);
+  for (std::size_t j = 0; j < n; ++j) edges_to[j] = make_segment(to[j], to[j + 1 == n ? 0 : j + 1]);
+  terms.resize(m * n);
+  ready.assign(m * n, 0);
+  auto endpoint = [&](std::size_t i, std::size_t k) -> const EndpointTerms& {
+    const std::size_t index = i * n + k;
+    if (!ready[index]) {
+      terms[index] = endpoint_terms(edges_from[i], to[k]);
+      ready[index] = 1;
+    }
+    return terms[index];
+  };
+  double sum = 0.0, magnitude = 0.0;
   for (std::size_t i = 0; i < m; ++i) {
-    const Vec3& p0 = from[i];
-    const Vec3& p1 = from[i + 1 == m ? 0 : i + 1];
-    const Vec3 a = p1 - p0;
-    const double lp = a.norm();
+    const Segment& p = edges_from[i];
+    if (p.length == 0.0) continue;
     for (std::size_t j = 0; j < n; ++j) {
-      const Vec3& q0 = to[j];
-      const Vec3& q1 = to[j + 1 == n ? 0 : j + 1];
-      const double lq = (q1 - q0).norm();
-      const double cos_length = a.dot(q1 - q0);  // (a . b) Lp Lq
-      if (cos_length == 0.0) continue;           // perpendicular edges contribute nothing
-      const double cosine = cos_length / (lp * lq);
-      const EdgePairIntegral k = edge_pair_log_integral(p0, p1, q0, q1);
+      const Segment& q = edges_to[j];
+      const double cosine = p.dir.dot(q.dir);
+      if (cosine == 0.0 || q.length == 0.0) continue;  // perpendicular edges contribute nothing
+      const Vec3 axb = p.dir.cross(q.dir);
+      // Parallel pairs use their own closed form and no endpoint terms (edge_pair_integral.cpp).
+      const bool parallel = axb.norm() <= 1e-15;
+      static const EndpointTerms kUnused;
+      const EdgePairIntegral k = edge_pair_log_integral(p, q, parallel ? kUnused : endpoint(i, j),
+                                                        parallel ? kUnused : endpoint(i, j + 1 == n ? 0 : j + 1));
       sum += cosine * k.value;
       magnitude += std::abs(cosine) * k.magnitude;
     }

@@ -66,18 +66,16 @@ EdgePairIntegral parallel_pair(const Vec3& p0, const Vec3& a, double lp, const V
   return {value, magnitude};
 }
 
-// int over sigma in [s0, s1] of (alpha - c sigma)/2 ln(sigma^2 + rho^2), given
-// r2_0 = s0^2 + rho^2 and r2_1 = s1^2 + rho^2 computed directly as squared distances.
+// int over sigma in [s0, s1] of (alpha - c sigma)/2 ln(sigma^2 + rho^2), s0 = beta, s1 = Lp + beta,
+// from the endpoint terms (whose r2 are the squared distances computed directly).
 // Adds the absolute sizes of its terms to *magnitude.
-double log_part(double alpha, double c, double rho, double s0, double s1, double r2_0, double r2_1,
-                double* magnitude) {
-  const double lg1 = log_or_zero(r2_1), lg0 = log_or_zero(r2_0);  // each once (libm calls are not merged)
-  auto l1 = [&](double s, double lg) { return 0.5 * s * lg - s + h_atan(rho, s); };
-  auto l2 = [&](double s, double r2, double lg) { return 0.25 * r2 * lg - 0.25 * s * s; };
-  const double a1 = l1(s1, lg1), a0 = l1(s0, lg0), b1 = l2(s1, r2_1, lg1), b0 = l2(s0, r2_0, lg0);
+double log_part(double alpha, double c, double lp, const EndpointTerms& t, double* magnitude) {
+  const double s0 = t.beta, s1 = lp + t.beta;
+  const double a1 = 0.5 * s1 * t.log1 - s1 + t.h_atan1, a0 = 0.5 * s0 * t.log0 - s0 + t.h_atan0;
+  const double b1 = 0.25 * t.r2_1 * t.log1 - 0.25 * s1 * s1, b0 = 0.25 * t.r2_0 * t.log0 - 0.25 * s0 * s0;
   // Each ln carries an absolute rounding error ~eps: count its coefficients too.
   *magnitude += std::abs(alpha) * (std::abs(a1) + std::abs(a0) + 0.5 * (std::abs(s1) + std::abs(s0))) +
-                std::abs(c) * (std::abs(b1) + std::abs(b0) + 0.25 * (r2_1 + r2_0));
+                std::abs(c) * (std::abs(b1) + std::abs(b0) + 0.25 * (t.r2_1 + t.r2_0));
   return alpha * (a1 - a0) - c * (b1 - b0);
 }
 
@@ -164,28 +162,27 @@ double panels(const SkewPair& e, double lo, double hi, double min_length) {
   return panels(e, lo, split, min_length) + panels(e, split, hi, min_length);
 }
 
-EdgePairIntegral skew_pair(const Vec3& p0, const Vec3& a, double lp, const Vec3& q0, const Vec3& b, double lq,
-                 const Vec3& axb) {
+EdgePairIntegral skew_pair(const Segment& p, const Segment& q, const EndpointTerms& at_q0, const EndpointTerms& at_q1,
+                           const Vec3& axb) {
+  const Vec3& a = p.dir;
+  const Vec3& b = q.dir;
   SkewPair e;
-  e.w0 = p0 - q0;
+  e.w0 = p.p0 - q.p0;
   e.a = a;
   e.b = b;
-  e.lq = lq;
+  e.lq = q.length;
   e.m = e.w0.cross(b);
   e.axb = axb;
   const double c = a.dot(b);
-  // Logarithmic part, both ends of q: t_k = 0 (sign -1) and t_k = Lq (sign +1).
+  // Logarithmic part, both ends of q: Q0 (sign -1) and Q1 (sign +1).
   double sum = 0.0, magnitude = 0.0;
   for (int k = 0; k < 2; ++k) {
-    const double tk = k == 0 ? 0.0 : lq;
-    const Vec3 v = e.w0 - tk * b;  // P0 - Q_k
-    const double beta = v.dot(a);
-    const double rho = v.cross(a).norm();
+    const EndpointTerms& t = k == 0 ? at_q0 : at_q1;
+    const Vec3 v = p.p0 - (k == 0 ? q.p0 : q.p1);  // P0 - Q_k
     const double alpha = -v.dot(b - c * a);
-    const Vec3 v1 = v + lp * a;  // P1 - Q_k
-    const double part = log_part(alpha, c, rho, beta, lp + beta, v.squaredNorm(), v1.squaredNorm(), &magnitude);
+    const double part = log_part(alpha, c, p.length, t, &magnitude);
     sum += k == 0 ? -part : part;
-    e.singular[e.singular_count++] = {-beta, rho};  // P(s) = Q_k
+    e.singular[e.singular_count++] = {-t.beta, t.rho};  // P(s) = Q_k
   }
   // Branch point of h(s) = |w0 x b + s (a x b)|.
   const double axb2 = axb.squaredNorm();
@@ -194,23 +191,50 @@ EdgePairIntegral skew_pair(const Vec3& p0, const Vec3& a, double lp, const Vec3&
     const double im = (e.m + s_star * axb).norm() / std::sqrt(axb2);
     if (std::isfinite(s_star) && std::isfinite(im)) e.singular[e.singular_count++] = {s_star, im};
   }
-  const double remainder = panels(e, 0.0, lp, 1e-9 * lp);
+  const double remainder = panels(e, 0.0, p.length, 1e-9 * p.length);
   return {sum + remainder, magnitude + std::abs(remainder)};
 }
 
 }  // namespace
 
-EdgePairIntegral edge_pair_log_integral(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
-  const Vec3 dp = p1 - p0, dq = q1 - q0;
-  const double lp = dp.norm(), lq = dq.norm();
-  if (lp == 0.0 || lq == 0.0) return {};
-  const Vec3 a = dp / lp, b = dq / lq;
+Segment make_segment(const Vec3& p0, const Vec3& p1) {
+  const Vec3 d = p1 - p0;
+  const double length = d.norm();
+  return {p0, p1, length > 0.0 ? Vec3(d / length) : Vec3::Zero(), length};
+}
+
+EndpointTerms endpoint_terms(const Segment& p, const Vec3& q) {
+  EndpointTerms t;
+  const Vec3 v0 = p.p0 - q, v1 = p.p1 - q;
+  t.beta = v0.dot(p.dir);
+  t.rho = v0.cross(p.dir).norm();
+  t.r2_0 = v0.squaredNorm();
+  t.r2_1 = v1.squaredNorm();
+  t.log0 = log_or_zero(t.r2_0);
+  t.log1 = log_or_zero(t.r2_1);
+  t.h_atan0 = h_atan(t.rho, t.beta);
+  t.h_atan1 = h_atan(t.rho, p.length + t.beta);
+  return t;
+}
+
+EdgePairIntegral edge_pair_log_integral(const Segment& p, const Segment& q, const EndpointTerms& at_q0,
+                                        const EndpointTerms& at_q1) {
+  if (p.length == 0.0 || q.length == 0.0) return {};
+  const Vec3& a = p.dir;
+  const Vec3& b = q.dir;
   const Vec3 axb = a.cross(b);
   // Parallel within rounding of the unit vectors: a tilt of 1e-15 changes K by ~1e-15 Lp Lq.
   if (axb.norm() <= 1e-15) {
-    return a.dot(b) > 0.0 ? parallel_pair(p0, a, lp, q0, lq) : parallel_pair(p0, a, lp, q1, lq);
+    return a.dot(b) > 0.0 ? parallel_pair(p.p0, a, p.length, q.p0, q.length)
+                          : parallel_pair(p.p0, a, p.length, q.p1, q.length);
   }
-  return skew_pair(p0, a, lp, q0, b, lq, axb);
+  return skew_pair(p, q, at_q0, at_q1, axb);
+}
+
+EdgePairIntegral edge_pair_log_integral(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+  const Segment p = make_segment(p0, p1), q = make_segment(q0, q1);
+  if (p.length == 0.0 || q.length == 0.0) return {};
+  return edge_pair_log_integral(p, q, endpoint_terms(p, q0), endpoint_terms(p, q1));
 }
 
 }  // namespace hrad::detail
