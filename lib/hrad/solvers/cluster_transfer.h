@@ -2,7 +2,7 @@
 // the refinement oracle and an estimate for the link (Smits, Arvo & Greenberg 1994, sec. 3-4;
 // Sillion 1995, sec. 4, "oriented" clusters).
 //
-// Bound: every point of p sees q within the solid angle of q's bounding sphere, at distance
+// Bound (for tests and a conservative oracle): every point of p sees q within the solid angle of q's bounding sphere, at distance
 // >= d_min = |c_p - c_q| - r_p - r_q, so F(p -> q) <= Aproj_max(q) / (pi d_min^2) (the point-to-
 // disc factor with cos <= 1 at both ends); unbounded (must refine) when the spheres overlap.
 // Estimate: the far-field factor between the two centres with the exact projected areas of the

@@ -59,6 +59,8 @@ NodeRef ClusterTree::build(int begin, int end, int parent, const std::vector<Vec
   c.centre = 0.5 * (c.lo + c.hi);
   c.radius = 0.5 * (c.hi - c.lo).norm();
   c.max_projected_area = std::min(c.area, plus.max(minus).matrix().norm());
+  c.axis_plus = plus;
+  c.axis_minus = minus;
   // Median split of the centroids along the longest axis of their box (ties by patch index, so
   // the tree is the same on every platform).
   int axis = 0;

@@ -32,6 +32,9 @@ struct Cluster {
   /// sums P_k^+- = sum_i A_i max(0, +-n_ik): sum_i A_i max(0, n_i.d) <= sum_k |d_k| P_k^sign(d_k)
   /// <= |(max(P_k^+, P_k^-))_k| (Cauchy-Schwarz); never above `area`.
   double max_projected_area = 0.0;
+  /// P_k^+ and P_k^-: the contents' areas times max(0, +-n_k) per axis k (oriented cluster
+  /// transfer: exact projected areas for axis-aligned contents).
+  Eigen::Array3d axis_plus = Eigen::Array3d::Zero(), axis_minus = Eigen::Array3d::Zero();
   NodeRef children[2] = {kNoNode, kNoNode};   ///< clusters or patch roots
   int parent = -1;                            ///< cluster index, -1 for the root
   int begin = 0, end = 0;                     ///< its patches are patch_order()[begin, end)

@@ -1,6 +1,7 @@
 #include "hrad/solvers/clustered_hierarchical.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -42,6 +43,19 @@ struct DirectedLink {
   float factor;         ///< F(receiver -> source); float: 6e-8 relative, far below any tolerance here
 };
 static_assert(sizeof(DirectedLink) == 8);
+
+/// A directed link with a cluster at one end: 20 bytes (the direction picks which of the cluster's
+/// surfaces send and receive).
+struct ClusterLink {
+  std::int32_t source;                ///< dense node index
+  float factor;                       ///< F(receiver -> source)
+  std::array<float, 3> to_source;     ///< unit direction from the receiver's centre to the source's
+};
+static_assert(sizeof(ClusterLink) == 20);
+
+/// Per signed axis (+x, +y, +z, -x, -y, -z): a cluster's gathered irradiance for surfaces facing
+/// that way, or its radiosity shown that way.
+using Bins = std::array<Rgb, 6>;
 
 double radiosity_bound(const Scene& scene) {
   double e = 0.0, rho = 0.0;
@@ -147,20 +161,37 @@ class ClusteredSolver {
     auto phase = ctx_.phase("links");
     const std::size_t n = dense_size();
     offsets_.assign(n + 1, 0);
+    cluster_offsets_.assign(n + 1, 0);
     const std::size_t own = pairs_.size() - (recorded_element_pairs_ ? element_pairs_ : 0);
+    auto with_cluster = [](const PairLink& l) { return is_cluster(l.p) || is_cluster(l.q); };
     for (std::size_t i = 0; i < own; ++i) {
       const PairLink& l = pairs_[i];
-      if (l.f_pq > 0.0f) ++offsets_[dense(l.p) + 1];
-      if (l.f_qp > 0.0f) ++offsets_[dense(l.q) + 1];
+      auto& off = with_cluster(l) ? cluster_offsets_ : offsets_;
+      if (l.f_pq > 0.0f) ++off[dense(l.p) + 1];
+      if (l.f_qp > 0.0f) ++off[dense(l.q) + 1];
     }
     for (const Link& l : leaf_links_) ++offsets_[static_cast<std::size_t>(l.receiver) + 1];
-    for (std::size_t i = 0; i < n; ++i) offsets_[i + 1] += offsets_[i];
+    for (std::size_t i = 0; i < n; ++i) {
+      offsets_[i + 1] += offsets_[i];
+      cluster_offsets_[i + 1] += cluster_offsets_[i];
+    }
     links_.assign(offsets_[n], {});
+    cluster_links_.assign(cluster_offsets_[n], {});
     std::vector<std::uint64_t> cursor(offsets_.begin(), offsets_.end() - 1);
+    std::vector<std::uint64_t> cluster_cursor(cluster_offsets_.begin(), cluster_offsets_.end() - 1);
     for (std::size_t i = 0; i < own; ++i) {
       const PairLink& l = pairs_[i];
-      if (l.f_pq > 0.0f) links_[cursor[dense(l.p)]++] = {static_cast<std::int32_t>(dense(l.q)), l.f_pq};
-      if (l.f_qp > 0.0f) links_[cursor[dense(l.q)]++] = {static_cast<std::int32_t>(dense(l.p)), l.f_qp};
+      const std::size_t dp = dense(l.p), dq = dense(l.q);
+      if (!with_cluster(l)) {
+        if (l.f_pq > 0.0f) links_[cursor[dp]++] = {static_cast<std::int32_t>(dq), l.f_pq};
+        if (l.f_qp > 0.0f) links_[cursor[dq]++] = {static_cast<std::int32_t>(dp), l.f_qp};
+        continue;
+      }
+      const Vec3 d = (transfer_.shape(l.q).centre - transfer_.shape(l.p).centre).normalized();  // p towards q
+      const std::array<float, 3> to_q = {static_cast<float>(d.x()), static_cast<float>(d.y()), static_cast<float>(d.z())};
+      const std::array<float, 3> to_p = {-to_q[0], -to_q[1], -to_q[2]};
+      if (l.f_pq > 0.0f) cluster_links_[cluster_cursor[dp]++] = {static_cast<std::int32_t>(dq), l.f_pq, to_q};
+      if (l.f_qp > 0.0f) cluster_links_[cluster_cursor[dq]++] = {static_cast<std::int32_t>(dp), l.f_qp, to_p};
     }
     for (const Link& l : leaf_links_)
       links_[cursor[static_cast<std::size_t>(l.receiver)]++] = {l.source, static_cast<float>(l.form_factor)};
@@ -178,7 +209,11 @@ class ClusteredSolver {
     pull();
     patch_change_.assign(static_cast<std::size_t>(h_.patch_count()), 0.0);
     patch_largest_.assign(static_cast<std::size_t>(h_.patch_count()), 0.0);
-    cluster_down_.assign(tree_.size(), Rgb::Zero());
+    const Bins zero = {Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero()};
+    cluster_bins_.assign(tree_.size(), zero);
+    cluster_down_.assign(tree_.size(), zero);
+    cluster_directional_.assign(tree_.size(), zero);
+    pull_clusters();
     while (true) {
       gather();
       const double change = push_pull();
@@ -205,14 +240,18 @@ class ClusteredSolver {
     for (std::size_t i = 0; i < n; ++i) own += (pairs_[i].f_pq > 0.0f) + (pairs_[i].f_qp > 0.0f);
     return own + element_directed_;
   }
-  std::size_t stored_links() const { return links_.size(); }
+  /// Directed links with the far-field transfer (a cluster at one end or two separated elements).
+  std::size_t far_field_links() const { return directed_links() - element_directed_; }
+  std::size_t stored_links() const { return links_.size() + cluster_links_.size(); }
   std::size_t leaf_links() const { return leaf_link_count_; }
   std::size_t link_pairs() const { return pairs_.size() - (recorded_element_pairs_ ? element_pairs_ : 0) + element_pairs_; }
   std::size_t cluster_link_pairs() const { return cluster_pairs_; }
   std::uint64_t cluster_estimates() const { return transfer_.estimates(); }
   std::size_t link_bytes() const {
-    return links_.capacity() * sizeof(DirectedLink) + offsets_.capacity() * sizeof(std::uint64_t);
+    return links_.capacity() * sizeof(DirectedLink) + cluster_links_.capacity() * sizeof(ClusterLink) +
+           (offsets_.capacity() + cluster_offsets_.capacity()) * sizeof(std::uint64_t);
   }
+  std::size_t stored_cluster_links() const { return cluster_links_.size(); }
   const std::vector<PairLink>& pairs() const { return pairs_; }
   Vec3 centre(NodeRef r) const { return transfer_.shape(r).centre; }
   void release_pairs() { std::vector<PairLink>().swap(pairs_); }
@@ -313,21 +352,65 @@ class ClusteredSolver {
     pull_clusters();
   }
 
+  // A cluster's radiosity: the area mean of its children (for the B*F oracle and reports), and per
+  // signed axis the mean over its surfaces weighted by their projected area along that axis
+  // (Sillion 1995's oriented clusters, with the six axis directions as the basis): what it shows
+  // towards a direction.
   void pull_clusters() {
     for (std::size_t c = tree_.size(); c-- > 0;) {
       const Cluster& k = tree_.cluster(static_cast<int>(c));
       Rgb sum = Rgb::Zero();
+      Bins weighted = {Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero()};
       for (const NodeRef child : k.children) {
-        const double a = is_cluster(child) ? tree_.cluster(cluster_index(child)).area : h_.node(child).area;
-        sum += a * radiosity_[dense(child)];
+        if (is_cluster(child)) {
+          const std::size_t ci = static_cast<std::size_t>(cluster_index(child));
+          const Cluster& kc = tree_.cluster(cluster_index(child));
+          sum += kc.area * radiosity_[dense(child)];
+          if (!cluster_directional_.empty())
+            for (int a = 0; a < 3; ++a) {
+              weighted[a] += kc.axis_plus[a] * cluster_directional_[ci][a];
+              weighted[3 + a] += kc.axis_minus[a] * cluster_directional_[ci][3 + a];
+            }
+        } else {
+          const ElementNode& e = h_.node(child);
+          const Rgb& b = radiosity_[static_cast<std::size_t>(child)];
+          sum += e.area * b;
+          const Vec3& n = scene_.patches[static_cast<std::size_t>(e.patch)].normal;
+          for (int a = 0; a < 3; ++a) {
+            weighted[a] += e.area * std::max(0.0, n[a]) * b;
+            weighted[3 + a] += e.area * std::max(0.0, -n[a]) * b;
+          }
+        }
       }
       radiosity_[h_.size() + c] = sum / k.area;
+      if (!cluster_directional_.empty())
+        for (int a = 0; a < 3; ++a) {
+          cluster_directional_[c][a] = k.axis_plus[a] > 0.0 ? Rgb(weighted[a] / k.axis_plus[a]) : Rgb::Zero();
+          cluster_directional_[c][3 + a] = k.axis_minus[a] > 0.0 ? Rgb(weighted[3 + a] / k.axis_minus[a]) : Rgb::Zero();
+        }
     }
+  }
+
+  // Radiosity that node `source` (dense index) shows towards the unit direction u.
+  Rgb shown(std::size_t source, const float* u) const {
+    if (source < h_.size()) return radiosity_[source];
+    const std::size_t c = source - h_.size();
+    const Cluster& k = tree_.cluster(static_cast<int>(c));
+    Rgb sum = Rgb::Zero();
+    double weight = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const double ua = u[a];
+      const double w = ua > 0.0 ? ua * k.axis_plus[a] : -ua * k.axis_minus[a];
+      sum += w * cluster_directional_[c][ua > 0.0 ? a : 3 + a];
+      weight += w;
+    }
+    return weight > 0.0 ? Rgb(sum / weight) : radiosity_[source];
   }
 
   // HSA 1991 GatherRad over the receiver-grouped links, in parallel over receivers: each sums its
   // own links in their fixed order, so the bits do not depend on the thread count.
   void gather() {
+    const std::size_t elements = h_.size();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, dense_size(), 512),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -335,7 +418,41 @@ class ClusteredSolver {
                           for (std::uint64_t k = offsets_[i]; k < offsets_[i + 1]; ++k)
                             sum += static_cast<double>(links_[k].factor) *
                                    radiosity_[static_cast<std::size_t>(links_[k].source)];
-                          gathered_[i] = sum;
+                          if (i < elements) {
+                            // An element receives what each source shows towards it.
+                            for (std::uint64_t k = cluster_offsets_[i]; k < cluster_offsets_[i + 1]; ++k) {
+                              const ClusterLink& l = cluster_links_[k];
+                              const float back[3] = {-l.to_source[0], -l.to_source[1], -l.to_source[2]};
+                              sum += static_cast<double>(l.factor) * shown(static_cast<std::size_t>(l.source), back);
+                            }
+                            gathered_[i] = sum;
+                            continue;
+                          }
+                          // A cluster receives the link's power A_R F B_S, spread over its surfaces
+                          // by their projected area towards the source, per signed axis, so that
+                          // what its surfaces get sums to that power (Sillion 1995, oriented
+                          // receivers; exact for axis-aligned surfaces in the far field).
+                          const std::size_t c = i - elements;
+                          const Cluster& kc = tree_.cluster(static_cast<int>(c));
+                          Bins bins = {Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero()};
+                          for (std::uint64_t k = cluster_offsets_[i]; k < cluster_offsets_[i + 1]; ++k) {
+                            const ClusterLink& l = cluster_links_[k];
+                            const float back[3] = {-l.to_source[0], -l.to_source[1], -l.to_source[2]};
+                            double facing = 0.0;
+                            for (int a = 0; a < 3; ++a)
+                              facing += l.to_source[a] > 0.0f ? l.to_source[a] * kc.axis_plus[a]
+                                                              : -l.to_source[a] * kc.axis_minus[a];
+                            if (!(facing > 0.0)) continue;
+                            const Rgb power = (static_cast<double>(l.factor) * kc.area / facing) *
+                                              shown(static_cast<std::size_t>(l.source), back);
+                            for (int a = 0; a < 3; ++a) {
+                              const double da = l.to_source[a];
+                              if (da > 0.0) bins[a] += da * power;
+                              else if (da < 0.0) bins[3 + a] += -da * power;
+                            }
+                          }
+                          cluster_bins_[c] = bins;
+                          gathered_[i] = sum;  // no element-style links end at clusters
                         }
                       });
   }
@@ -344,14 +461,22 @@ class ClusteredSolver {
   double push_pull() {
     for (std::size_t c = 0; c < tree_.size(); ++c) {  // parents before children
       const int parent = tree_.cluster(static_cast<int>(c)).parent;
-      cluster_down_[c] = gathered_[h_.size() + c] + (parent >= 0 ? cluster_down_[static_cast<std::size_t>(parent)] : Rgb::Zero());
+      cluster_down_[c] = cluster_bins_[c];
+      if (parent >= 0)
+        for (int a = 0; a < 6; ++a) cluster_down_[c][a] += cluster_down_[static_cast<std::size_t>(parent)][a];
     }
     tbb::parallel_for(tbb::blocked_range<int>(0, h_.patch_count(), 8), [&](const tbb::blocked_range<int>& range) {
       for (int p = range.begin(); p != range.end(); ++p) {
         const int parent = tree_.parent_of_patch(p);
         double change = 0.0, largest = 0.0;
-        push_pull_element(h_.root(p), parent >= 0 ? cluster_down_[static_cast<std::size_t>(parent)] : Rgb::Zero(),
-                          &change, &largest);
+        // The patch's share of its clusters' bins: its irradiance from the cluster links.
+        Rgb down = Rgb::Zero();
+        if (parent >= 0) {
+          const Vec3& n = scene_.patches[static_cast<std::size_t>(p)].normal;
+          const Bins& bins = cluster_down_[static_cast<std::size_t>(parent)];
+          for (int a = 0; a < 3; ++a) down += n[a] > 0.0 ? Rgb(n[a] * bins[a]) : Rgb(-n[a] * bins[3 + a]);
+        }
+        push_pull_element(h_.root(p), down, &change, &largest);
         patch_change_[static_cast<std::size_t>(p)] = change;
         patch_largest_[static_cast<std::size_t>(p)] = largest;
       }
@@ -407,7 +532,10 @@ class ClusteredSolver {
   bool recorded_element_pairs_ = false;
   std::vector<std::uint64_t> offsets_;
   std::vector<DirectedLink> links_;
-  std::vector<Rgb> radiosity_, gathered_, cluster_down_;
+  std::vector<Rgb> radiosity_, gathered_;
+  std::vector<std::uint64_t> cluster_offsets_;
+  std::vector<ClusterLink> cluster_links_;
+  std::vector<Bins> cluster_bins_, cluster_down_, cluster_directional_;
   std::vector<double> patch_change_, patch_largest_;
 };
 
@@ -479,11 +607,14 @@ SolveSummary solve_clustered_hierarchical(const Scene& scene, const SolveOptions
   }
   figures["refine_passes"] = passes;
   figures["link_pairs"] = static_cast<double>(solver.link_pairs());
+  figures["far_field_links"] = static_cast<double>(solver.far_field_links());
   figures["cluster_link_pairs"] = static_cast<double>(solver.cluster_link_pairs());
   figures["cluster_estimates"] = static_cast<double>(solver.cluster_estimates());
   figures["leaf_links"] = static_cast<double>(solver.leaf_links());
   figures["stored_links"] = static_cast<double>(solver.stored_links());
   figures["bytes_per_link"] = static_cast<double>(sizeof(DirectedLink));
+  figures["bytes_per_cluster_link"] = static_cast<double>(sizeof(ClusterLink));
+  figures["stored_cluster_links"] = static_cast<double>(solver.stored_cluster_links());
   figures["link_bytes"] = static_cast<double>(solver.link_bytes());
   figures["min_element_area"] = min_area;
   figures["max_depth"] = max_depth;
@@ -491,8 +622,9 @@ SolveSummary solve_clustered_hierarchical(const Scene& scene, const SolveOptions
   if (out != nullptr && options.record_links) {
     for (const PairLink& l : solver.pairs()) segments.emplace_back(solver.centre(l.p), solver.centre(l.q));
   }
+  const std::size_t directed = solver.directed_links();
   solver.release_pairs();
-  SolveSummary summary = ctx.finish(h, solver.directed_links(), out);
+  SolveSummary summary = ctx.finish(h, directed, out);
   if (out != nullptr) out->link_segments = std::move(segments);
   return summary;
 }

@@ -2,17 +2,24 @@
 // for radiosity in complex environments") with Sillion's 1995 oriented cluster transfer.
 //
 // A binary volume hierarchy of clusters (ClusterTree) sits above the patches' quadtrees. The whole
-// scene is linked from one root self-link and refined top-down: a cluster's self-link becomes the
-// links between its children (and their self-links); a pair involving a cluster is linked when the
-// bound of its factors (cluster_transfer.h) is within feps (or B*F within bfeps), otherwise the
-// node with the larger bounding sphere is split (a cluster into its two children, an element 1-to-4
-// down to aeps); pairs of elements are refined as in plain HSA (hierarchical.h) with the shared
-// FormFactorEvaluator. Gather runs over links stored by receiver (each directed link 8 bytes: a
-// 32-bit source and a 32-bit float factor) in parallel over receivers, each summing its links in a
-// fixed order, so the result is the same at any thread count. Push-pull goes through the clusters:
-// what a cluster gathers is pushed to its children (uniformly per unit area: Sillion's isotropic
-// receiver), and a cluster's radiosity is the area-weighted mean of its children (the power average
-// it shoots with).
+// scene is linked from one root self-link and refined top-down (breadth-first; each level decided
+// in parallel, split in order, so the result is the same at any thread count):
+//  * a cluster's self-link becomes the links between its two children and their self-links;
+//  * a pair farther apart than twice the sum of its bounding radii is linked with the far-field
+//    transfer (cluster_transfer.h) when its error, estimated as the factor times the change of the
+//    1/r^2 falloff across the two spheres, 2 (r_p + r_q) / r, plus the sampled visibility error,
+//    times the source's a-priori radiosity weight (solve_hierarchical()'s), is within feps; this
+//    holds for element pairs too, so far element pairs need no exact kernel;
+//  * other pairs with a cluster split the side with the larger bounding sphere;
+//  * other element pairs go to solve_hierarchical()'s refinement and leaf-exact links
+//    (hierarchical_refine.h, hierarchical_leaf_factors.h): near interactions are plain HSA.
+// Links are stored grouped by receiver: element-to-element links in 8 bytes (32-bit source, float
+// factor), links with a cluster end in 20 bytes (plus the direction), gathered in parallel over
+// receivers, each summing its own links in a fixed order. Clusters are oriented (Sillion 1995): a
+// cluster shows, towards a direction, the mean radiosity of its surfaces weighted by their
+// projected areas (kept per signed axis), and spreads what it receives over its surfaces by their
+// projected area towards the source (per signed axis, conserving the link's power); push-pull runs
+// through the clusters into the quadtrees.
 #pragma once
 
 #include "hrad/core/scene.h"
