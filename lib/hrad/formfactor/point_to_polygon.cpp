@@ -45,6 +45,7 @@ struct LambertSum {
 
 // Sum over the closed contour; `r` are the vertices relative to x.
 LambertSum lambert_sum(std::span<const Vec3> r, const Vec3& n) {
+  constexpr double kInv2Pi = 0.5 / std::numbers::pi;
   double sum = 0.0, magnitude = 0.0;
   const std::size_t k = r.size();
   for (std::size_t i = 0; i < k; ++i) {
@@ -55,12 +56,13 @@ LambertSum lambert_sum(std::span<const Vec3> r, const Vec3& n) {
     // s == 0: x on the edge's line. Outside the segment gamma = 0; on it x would lie in the
     // polygon's plane, which the caller has excluded. Either way the term is 0.
     if (s > 0.0) {
-      const double term = detail::fast_atan2(s, a.dot(b)) * n.dot(c) / s;
+      // The cosine factor first: its division then runs alongside the atan2.
+      const double term = detail::fast_atan2(s, a.dot(b)) * (n.dot(c) / s);
       sum += term;
       magnitude += std::abs(term);
     }
   }
-  return {sum / (2.0 * std::numbers::pi), magnitude / (2.0 * std::numbers::pi)};
+  return {sum * kInv2Pi, magnitude * kInv2Pi};
 }
 
 // Pieces of the polygon (vertices relative to x, polygon normal `normal`), see the file comment.
