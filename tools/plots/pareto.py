@@ -1,25 +1,33 @@
-"""Error against time, log-log, one curve per method: `pareto.py SWEEP.csv OUT.png TITLE`."""
+"""Error against time, log-log, one curve per method and parameter: `pareto.py SWEEP.csv OUT.png TITLE`.
+
+Left: the error of the constant element radiosity (the unknowns); right, when the sweep measured it
+(column error_l2_smooth), the error of the displayed field (vertex radiosity interpolated linearly)."""
 import sys
 
 from common import COLORS, plt, read_csv, save
 
 rows = read_csv(sys.argv[1])
-fig, ax = plt.subplots(figsize=(7, 5))
-for method in ("full", "substructure", "hierarchical"):
-    for parameter, marker in (("max_area", "o"), ("patch_area", "s"), ("feps", "o"), ("aeps", "^")):
-        pts = sorted((r["seconds"], r["error_l2"]) for r in rows
-                     if r["method"] == method and r["parameter"] == parameter and r["error_l2"] > 0)
-        if not pts:
-            continue
-        ax.plot([p[0] for p in pts], [p[1] for p in pts], marker=marker, color=COLORS[method],
-                label="%s (%s)" % (method, parameter), linestyle="-" if marker == "o" else ":")
-ax.axhline(0.01, color="gray", linewidth=0.8, linestyle="--")
-ax.text(ax.get_xlim()[0], 0.0105, " 1% L2", color="gray", va="bottom")
-ax.set_xscale("log")
-ax.set_yscale("log")
-ax.set_xlabel("seconds (wall clock)")
-ax.set_ylabel("relative L2 error against the reference")
-ax.set_title(sys.argv[3] if len(sys.argv) > 3 else "What accuracy costs in time")
-ax.grid(True, which="both", alpha=0.3)
-ax.legend(fontsize=8)
+fields = [("error_l2", "constant element radiosity")]
+if rows and "error_l2_smooth" in rows[0]:
+    fields.append(("error_l2_smooth", "displayed (interpolated) radiosity"))
+fig, axes = plt.subplots(1, len(fields), figsize=(7 * len(fields), 5), squeeze=False, sharey=True)
+for ax, (column, name) in zip(axes[0], fields):
+    for method in ("full", "substructure", "hierarchical"):
+        for parameter, marker in (("max_area", "o"), ("patch_area", "s"), ("feps", "o"), ("aeps", "^")):
+            pts = sorted((r["seconds"], r[column]) for r in rows
+                         if r["method"] == method and r["parameter"] == parameter and r[column] > 0)
+            if not pts:
+                continue
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], marker=marker, color=COLORS[method],
+                    label="%s (%s)" % (method, parameter), linestyle="-" if marker == "o" else ":")
+    ax.axhline(0.01, color="gray", linewidth=0.8, linestyle="--")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.text(ax.get_xlim()[0], 0.0105, " 1% L2", color="gray", va="bottom")
+    ax.set_xlabel("seconds (wall clock)")
+    ax.set_title(name, fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+axes[0][0].set_ylabel("relative L2 error of B - E against the reference")
+axes[0][0].legend(fontsize=8)
+fig.suptitle(sys.argv[3] if len(sys.argv) > 3 else "What accuracy costs in time")
 save(fig, sys.argv[2])
