@@ -38,9 +38,8 @@ ContourSum contour_area_factor(std::span<const Vec3> from, std::span<const Vec3>
       const Segment& q = edges_to[j];
       const double cosine = p.dir.dot(q.dir);
       if (cosine == 0.0 || q.length == 0.0) continue;  // perpendicular edges contribute nothing
-      const Vec3 axb = p.dir.cross(q.dir);
       // Parallel pairs use their own closed form and no endpoint terms (edge_pair_integral.cpp).
-      const bool parallel = axb.norm() <= 1e-15;
+      const bool parallel = parallel_directions(p.dir.cross(q.dir));
       static const EndpointTerms kUnused;
       const EdgePairIntegral k = edge_pair_log_integral(p, q, parallel ? kUnused : endpoint(i, j),
                                                         parallel ? kUnused : endpoint(i, j + 1 == n ? 0 : j + 1));

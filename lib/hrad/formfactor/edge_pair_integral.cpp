@@ -140,9 +140,13 @@ int gauss_order(double a) {
 }
 
 double panels(const SkewPair& e, double lo, double hi, double min_length) {
+  // The smallest semi-major axis; a >= sqrt(1 + (2 im / len)^2) (the semi-minor axis is at least
+  // the distance from the real axis), which spares the square roots of singularities that cannot win.
   double a = INFINITY;
   int worst = 0;
+  const double inv_half2 = 4.0 / ((hi - lo) * (hi - lo));
   for (int k = 0; k < e.singular_count; ++k) {
+    if (1.0 + e.singular[k].im * e.singular[k].im * inv_half2 >= a * a) continue;
     const double ak = semi_major(e.singular[k], lo, hi);
     if (ak < a) a = ak, worst = k;
   }
@@ -223,8 +227,7 @@ EdgePairIntegral edge_pair_log_integral(const Segment& p, const Segment& q, cons
   const Vec3& a = p.dir;
   const Vec3& b = q.dir;
   const Vec3 axb = a.cross(b);
-  // Parallel within rounding of the unit vectors: a tilt of 1e-15 changes K by ~1e-15 Lp Lq.
-  if (axb.norm() <= 1e-15) {
+  if (parallel_directions(axb)) {
     return a.dot(b) > 0.0 ? parallel_pair(p.p0, a, p.length, q.p0, q.length)
                           : parallel_pair(p.p0, a, p.length, q.p1, q.length);
   }

@@ -31,6 +31,10 @@ struct EndpointTerms {
 };
 EndpointTerms endpoint_terms(const Segment& p, const Vec3& q);
 
+/// Unit directions parallel within their rounding (|a x b| <= 1e-15): a tilt of 1e-15 changes K
+/// by ~1e-15 Lp Lq, so such pairs take the parallel closed form.
+inline bool parallel_directions(const Vec3& axb) { return axb.squaredNorm() <= 1e-30; }
+
 /// K = int_0^Lp int_0^Lq ln |P(s) - Q(t)| ds dt + Lp * Lq for the segments p and q.
 /// The added Lp * Lq (the same multiple of Lp * Lq for every pair) cancels in the double sum over
 /// two closed contours, as does any change of the unit of length; it is dropped from the closed forms.

@@ -45,7 +45,7 @@ inline double fast_atan2(double y, double x) {
   const double num = std::min(y, ax), den = std::max(y, ax);
   if (!(den > 0.0)) return 0.0;
   const double t = num / den;
-  const AtanNode& node = kAtanTable[static_cast<std::size_t>(t * kAtanIntervals + 0.5)];
+  const AtanNode& node = kAtanTable[static_cast<std::size_t>(static_cast<int>(t * kAtanIntervals + 0.5))];
   // Exact: Sterbenz's lemma (t in [c/2, 2c]) for c > 0, and d = t for c = 0.
   const double d = t - node.c;
   const auto& a = node.a;
