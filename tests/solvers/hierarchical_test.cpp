@@ -11,8 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/io/obj_reader.h"
+#include "hrad/solvers/hierarchical_leaf_factors.h"
+#include "hrad/solvers/hierarchical_refine.h"
+#include "hrad/solvers/solver_context.h"
 #include "solver_test_scenes.h"
 #include "hrad/solvers/solve.h"
 
@@ -72,9 +76,11 @@ double worst_element_deviation(const Solution& sol, double expected) {
 
 class ClosedBox : public ::testing::TestWithParam<double> {};
 
-TEST_P(ClosedBox, EveryWallIsEOverOneMinusRho) {
-  // Each wall as a whole gathers through links that tile (wall x rest of the room), so its factors
-  // sum to 1 exactly (closure) and its mean radiosity is E / (1 - rho) up to the variation of B.
+TEST_P(ClosedBox, EveryElementIsEOverOneMinusRho) {
+  // Issue 5: within 1% at default settings, per element, for rho up to 0.99. Each leaf gathers its
+  // ancestors' links with its own factor (hierarchical_leaf_factors.h), so its factors sum to 1
+  // (closure) up to quadrature. With HSA's push (the ancestors' average factor) corner elements
+  // were 4.7% off at rho = 0.9 and 7.7% at 0.99.
   const double rho = GetParam();
   const double e = 3.0;
   const Scene s = make_box(4.0, 2.5, 5.0, {gray(rho, e)});
@@ -83,31 +89,107 @@ TEST_P(ClosedBox, EveryWallIsEOverOneMinusRho) {
   ASSERT_EQ(sum.termination, Termination::kConverged) << sum.message;
   EXPECT_GT(sum.elements, 6u);  // it did refine
   const double expected = e / (1.0 - rho);
-  EXPECT_LT(worst_patch_deviation(sol, expected), 0.01);
+  EXPECT_LT(worst_element_deviation(sol, expected), 0.01);
   EXPECT_NEAR(area_mean(s, sol, 0) / expected, 1.0, 5e-3);
 }
 
-INSTANTIATE_TEST_SUITE_P(Reflectances, ClosedBox, ::testing::Values(0.5, 0.9));
+INSTANTIATE_TEST_SUITE_P(Reflectances, ClosedBox, ::testing::Values(0.5, 0.9, 0.99));
 
-TEST(Hierarchical, ClosedBoxElementsApproachEOverOneMinusRhoAsFepsShrinks) {
-  // Per element, HSA's links are exact only in the mean over the receiver: an element in a corner
-  // inherits its ancestors' average factors (which see the far walls more than the corner does),
-  // so its factors do not sum to exactly 1. The error must shrink with feps.
-  const double rho = 0.5;
-  const Scene s = make_box(4.0, 2.5, 5.0, {gray(rho, 1.0)});
+TEST(Hierarchical, TJunctionBoxElementsAreEOverOneMinusRhoAtAnyFeps) {
+  // Walls cut into strips meet in T-junctions. The leaves' factors sum to 1 whatever the links'
+  // levels, so even a coarse feps (few, coarse links) keeps every element within 1% at rho = 0.99.
+  const double rho = 0.99;
+  const Scene s = test::make_box(4.0, 2.5, 5.0, {gray(rho, 1.0)}, {0, 0, 0, 0, 0, 0}, true);
   const double expected = 1.0 / (1.0 - rho);
-  std::vector<double> worst;
-  for (const double feps : {0.05, 0.01, 0.002}) {
+  for (const double feps : {0.05, 0.01}) {
     SolveOptions o;
     o.feps = feps;
-    o.aeps = s.total_area() / 1000.0;
     Solution sol;
-    ASSERT_EQ(solve_hr(s, &sol, o).termination, Termination::kConverged);
-    worst.push_back(worst_element_deviation(sol, expected));
+    const SolveSummary sum = solve_hr(s, &sol, o);
+    ASSERT_EQ(sum.termination, Termination::kConverged) << sum.message;
+    EXPECT_LT(worst_element_deviation(sol, expected), 0.01) << "feps " << feps;
   }
-  EXPECT_LT(worst[1], worst[0]);
-  EXPECT_LT(worst[2], worst[1]);
-  EXPECT_LT(worst[2], 0.03);
+}
+
+TEST(Hierarchical, LeafFactorsSumToOneInAClosedRoom) {
+  // Closure per leaf: the terms a leaf gathers (its own links' analytic factors and its
+  // ancestors' links with its own quadrature factors, scaled to each link's exact exchange) tile
+  // the room seen from it.
+  const Scene s = make_box(4.0, 2.5, 5.0, {gray(0.5, 1.0)});
+  SolveOptions o;
+  o.method = Method::kHierarchical;
+  o.feps = 0.05;
+  o.aeps = s.total_area() / 1000.0;
+  o.kernel = FormFactorKernel::kAnalytic;
+  SolverContext ctx(s, o, Method::kHierarchical);
+  ElementHierarchy h(s);
+  std::vector<detail::RefineCandidate> work;
+  for (int i = 0; i < 6; ++i)
+    for (int j = i + 1; j < 6; ++j) work.push_back(detail::candidate(h.root(i), h.root(j)));
+  const detail::RefineResult refined =
+      detail::refine_pairs(h, ctx.evaluator(), std::move(work), {o.feps, 0.0, o.aeps, {}}, 1);
+  const detail::LeafLinks links = detail::leaf_links(h, refined.links);
+  std::vector<double> row(h.size(), 0.0);
+  std::size_t inherited = 0;
+  for (std::size_t k = 0; k < links.size(); ++k) {
+    ASSERT_TRUE(h.node(links.leaf[k]).is_leaf());
+    row[static_cast<std::size_t>(links.leaf[k])] += links.factor[k];
+  }
+  // Each side's weights are a mean: they sum to 1.
+  for (const detail::LeafLinks::Pair& e : links.pairs) {
+    double wp = 0.0, wq = 0.0;
+    for (std::size_t k = e.p_first; k < e.p_first + e.p_count; ++k) wp += links.weight[k];
+    for (std::size_t k = e.q_first; k < e.q_first + e.q_count; ++k) wq += links.weight[k];
+    ASSERT_NEAR(wp, 1.0, 1e-9);
+    ASSERT_NEAR(wq, 1.0, 1e-9);
+  }
+  for (const detail::LinkPair& pair : refined.links) inherited += !h.node(pair.p).is_leaf() + !h.node(pair.q).is_leaf();
+  EXPECT_GT(inherited, 0u);  // some links are at interior nodes, so the push matters
+  double worst = 0.0;
+  for (const NodeId leaf : h.all_leaves()) worst = std::max(worst, std::abs(row[static_cast<std::size_t>(leaf)] - 1.0));
+  EXPECT_LT(worst, 1e-3);
+}
+
+TEST(Hierarchical, LeafFormFactorMatchesTheClosedForm) {
+  // Howell's catalog C-11: parallel unit squares 1 apart, F = 0.19982; and a right triangle (half
+  // of the square) against the analytic kernel.
+  const std::vector<Vec3> a = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const std::vector<Vec3> b = {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}};  // faces -z
+  EXPECT_NEAR(detail::leaf_form_factor(a, b), 0.19982, 2e-4);
+  const std::vector<Vec3> t = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};
+  EXPECT_NEAR(detail::leaf_form_factor(t, b), polygon_to_polygon(t, b).from_to, 1e-3);
+}
+
+TEST(Hierarchical, OracleRefinesALargeElementNearASmallOneThoughTheAverageFactorIsSmall) {
+  // Issue 5 defect 2: a 10 x 10 floor and a 0.5 x 0.5 square facing it 0.3 above one corner. The
+  // floor's average factor to the square is tiny (HSA's F(p -> q) < feps), but the floor's corner
+  // sees the square with a factor 0.19: giving the whole floor its average is far off there.
+  Scene s;
+  s.materials = {gray(0.5, 1.0)};
+  add_polygon(s, {{0, 0, 0}, {10, 0, 0}, {10, 0, 10}, {0, 0, 10}}, Vec3(0, 1, 0), 0);
+  add_polygon(s, {{0, 0.3, 0}, {0.5, 0.3, 0}, {0.5, 0.3, 0.5}, {0, 0.3, 0.5}}, Vec3(0, -1, 0), 0);
+  SolveOptions o;
+  o.kernel = FormFactorKernel::kAnalytic;
+  SolverContext ctx(s, o, Method::kHierarchical);
+  ElementHierarchy h(s);
+  detail::RefineCandidate c = detail::candidate(h.root(0), h.root(1));
+  detail::evaluate_candidate(h, ctx.evaluator(), c);
+  const double feps = 0.05;
+  ASSERT_LT(c.estimate.value, 0.0025);  // F(floor -> square) = 0.0025 F(square -> floor)
+  // The largest deviation is at the floor's corner under the square: Howell's catalog A-13 (point
+  // below a corner of a parallel a x b rectangle at height c), X = a / c, Y = b / c.
+  const double x = 0.5 / 0.3, r = std::sqrt(1.0 + x * x);
+  const double f_corner = 2.0 * x / r * std::atan(x / r) / (2.0 * std::numbers::pi);
+  EXPECT_NEAR(c.variation_p, f_corner - c.estimate.value, 1e-9);
+  EXPECT_TRUE(detail::pair_needs_refinement(h, c, {feps, 0.0, 1e-6, {}}, 1));
+  // Far above the floor the factor is uniform over it and small: no refinement.
+  Scene far = s;
+  for (Vec3& v : far.patches[1].vertices) v.y() = 1000.0;
+  SolverContext far_ctx(far, o, Method::kHierarchical);
+  ElementHierarchy far_h(far);
+  detail::RefineCandidate d = detail::candidate(far_h.root(0), far_h.root(1));
+  detail::evaluate_candidate(far_h, far_ctx.evaluator(), d);
+  EXPECT_FALSE(detail::pair_needs_refinement(far_h, d, {feps, 0.0, 1e-6, {}}, 1));
 }
 
 TEST(Hierarchical, ClosedBoxWithAFloatingBlockNeedsVisibility) {
@@ -147,12 +229,22 @@ TEST(Hierarchical, FacetedSphereAreaMeanIsMeanEmissionOverOneMinusRho) {
   const double e_bar = emitted / s.total_area();
   Solution sol;
   SolveOptions o;
-  o.feps = 0.02;  // 48 patches: the default's 0.005 would take tens of seconds
+  o.feps = 0.02;  // fewer links than the default: the area mean needs no more
   const SolveSummary sum = solve_hr(s, &sol, o);
   ASSERT_EQ(sum.termination, Termination::kConverged) << sum.message;
   EXPECT_NEAR(area_mean(s, sol, 0) / (e_bar / (1.0 - rho)), 1.0, 0.01);
   // and the unlit bottom is much darker than the lit cap
   EXPECT_LT(sol.patch_radiosity.back()[0], sol.patch_radiosity.front()[0]);
+}
+
+TEST(Hierarchical, UniformlyEmittingFacetedSphereIsEOverOneMinusRhoPerElement) {
+  // Triangles at the poles, trapezoids between: B = E / (1 - rho) on every element at rho = 0.99.
+  const double rho = 0.99;
+  const Scene s = make_faceted_sphere(2.0, 6, 8, gray(rho, 1.0), gray(rho, 1.0));
+  Solution sol;
+  const SolveSummary sum = solve_hr(s, &sol);
+  ASSERT_EQ(sum.termination, Termination::kConverged) << sum.message;
+  EXPECT_LT(worst_element_deviation(sol, 1.0 / (1.0 - rho)), 0.01);
 }
 
 TEST(Hierarchical, EnergyBalanceInAClosedColouredRoom) {
@@ -179,21 +271,25 @@ TEST(Hierarchical, EnergyBalanceInAClosedColouredRoom) {
 // --- Stability -------------------------------------------------------------------------------
 
 TEST(Hierarchical, NearlyLosslessRoomConvergesOrSaysSoWithoutNaN) {
-  // At rho = 0.999 Jacobi needs ~14000 steps for 1e-6, and HSA's element factors (which sum to 1
-  // only per patch) can make rho * lambda_max pass 1: either way the answer is a status, not NaN.
+  // At rho = 0.999 Jacobi contracts by ~0.999 per step: with too few iterations the answer is a
+  // status and finite values; given enough (~6900 at the default tolerance) it converges, and
+  // since each leaf's factors sum to 1 (no eigenvalue of rho K above 1), to E / (1 - rho)
+  // per element (measured 9e-4; the stopping test leaves ~1e-3 at this rho).
   const double rho = 0.999;
   const Scene s = make_box(4.0, 2.5, 5.0, {gray(rho, 1.0)});
   Solution sol;
   SolveOptions o;
-  o.max_iterations = 3000;
-  const SolveSummary sum = solve_hr(s, &sol, o);
-  EXPECT_NE(sum.termination, Termination::kConverged) << sum.message;
-  if (sum.termination == Termination::kFailed) EXPECT_NE(sum.message.find("diverging"), std::string::npos) << sum.message;
-  else EXPECT_EQ(sum.termination, Termination::kMaxIterations) << sum.message;
+  o.max_iterations = 1000;
+  SolveSummary sum = solve_hr(s, &sol, o);
+  EXPECT_EQ(sum.termination, Termination::kMaxIterations) << sum.message;
   for (const Rgb& b : sol.face_radiosity) {
     ASSERT_TRUE(b.isFinite().all());
     EXPECT_GE(b[0], 1.0);  // never below the emission
   }
+  o.max_iterations = 20000;
+  sum = solve_hr(s, &sol, o);
+  ASSERT_EQ(sum.termination, Termination::kConverged) << sum.message;
+  EXPECT_LT(worst_element_deviation(sol, 1.0 / (1.0 - rho)), 0.01);
 }
 
 TEST(Hierarchical, ScaledScenesGiveTheSameAnswer) {

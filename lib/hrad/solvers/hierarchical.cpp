@@ -34,18 +34,16 @@ double radiosity_bound(const Scene& scene) {
 /// Jacobi iterations of gather and push-pull (HSA 1991 sec. 4, "SolveSystem"). Returns false when
 /// the iteration stopped without converging.
 ///
-/// HSA's links are reciprocal and tile every pair of patches, so the factors of a whole patch sum
-/// to 1 in a closed scene, but those of a single element need not: an element inherits its
-/// ancestors' average factors. The gather operator K is self-adjoint in the area-weighted inner
-/// product with area-mean row sum 1, so its largest eigenvalue exceeds 1 whenever the row sums
-/// differ; as rho -> 1, rho * lambda_max can pass 1 and the iteration grows without bound. That is
-/// reported as a failure (twice the physical bound E_max / (1 - rho_max) is never reached by a
-/// contracting iteration started at B = E with row sums near 1), before any overflow.
-bool solve_links(SolverContext& ctx, ElementHierarchy& h, const std::vector<Link>& links, double bound) {
+/// Every link is resolved to leaves (hierarchical_leaf_factors.h), whose factors sum to at most 1
+/// up to quadrature and visibility sampling, so rho * K contracts for rho < 1. Sampled visibility
+/// or quadrature could still push a row sum above 1 as rho -> 1; that is reported as a failure
+/// (twice the physical bound E_max / (1 - rho_max) is never reached by a contracting iteration
+/// started at B = E), before any overflow.
+bool solve_links(SolverContext& ctx, ElementHierarchy& h, const detail::LeafLinks& links, double bound) {
   auto phase = ctx.phase("solve");
-  h.pull_radiosity();  // interior nodes hold the area average their links are gathered from
+  h.pull_radiosity();  // interior nodes hold their leaves' area average (for the output)
   while (true) {
-    gather(h, links);
+    detail::gather_leaf_links(h, links);
     const double change = push_pull(h, ctx.channels());
     if (ctx.record_iteration(change)) break;
     double largest = 0.0;
@@ -54,7 +52,7 @@ bool solve_links(SolverContext& ctx, ElementHierarchy& h, const std::vector<Link
       ctx.set_failed("diverging: the mean radiosity of a patch (" + std::to_string(largest) +
                      ") passed twice the bound E_max / (1 - rho_max) = " + std::to_string(bound) +
                      " after " + std::to_string(ctx.summary().iterations) +
-                     " iterations; the links' factors sum above 1 on some elements (try a smaller --feps or --aeps)");
+                     " iterations; the links' factors sum above 1 on some elements (try a smaller --feps or more --visibility-samples)");
       break;
     }
   }
@@ -106,7 +104,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     for (int j = i + 1; j < n; ++j) work.push_back(detail::candidate(h.root(i), h.root(j)));
 
   std::vector<detail::LinkPair> pairs;
-  std::vector<Link> links;
+  detail::LeafLinks links;
   const double bound = radiosity_bound(scene);
   int passes = 0;
   while (true) {

@@ -2,28 +2,58 @@
 // algorithm" (SIGGRAPH '91; "HSA" below).
 //
 // One quadtree per input patch (ElementHierarchy). Every pair of patches is refined into links
-// (Refine, HSA sec. 3): a pair whose factors are both below the tolerance, and whose visibility is
-// known well enough, becomes a link gathered both ways; otherwise the larger element is split 1-to-4
-// and its children are refined against the other, never below the smallest element area aeps.
-// The links are solved by Jacobi iterations of gather (over links) and push-pull (over each tree)
+// (Refine, HSA sec. 3): a pair whose error is below the tolerance becomes a link gathered both
+// ways; otherwise the element over which the factor varies more is split 1-to-4 and its children
+// are refined against the other, never below the smallest element area aeps. Pairs facing away or
+// fully hidden get no link. The links are solved by Jacobi iterations of gather and push-pull
 // until the largest relative change is below SolveOptions::tolerance. With --bfeps the links are
 // re-refined with the current radiosity after each solve (HSA sec. 4.2) until nothing changes.
-// Partly visible pairs refine further while F times the visibility error exceeds the tolerance;
-// pairs facing away or fully hidden get no link.
+//
+// Two departures from HSA, both about the error of a link (HSA sec. 4; Lischinski, Smits &
+// Greenberg 1994, "Bounds and error estimates for radiosity"; Holzschuch & Sillion 1998, "An
+// exhaustive error-bounding algorithm for hierarchical radiosity"):
+//  * The oracle (hierarchical_refine.h) tests the error a link makes, not the size of its factor:
+//    how far the point-to-element factor strays, over the sample points of each element, from the
+//    average the link gives them, weighted by the source's a-priori radiosity relative to the
+//    scene's (1 in a closed uniform room; ~40-70 for the Cornell box's light, 0.74 for its white
+//    walls). HSA's test F > feps refines a large floor against a small light by F's average, which
+//    hides that points under the light see it with a much larger factor. Partly visible pairs
+//    refine while a shadow boundary could make a point's error as large as its unoccluded factor,
+//    or while the sampled visibility's error exceeds feps.
+//  * Push and pull (hierarchical_leaf_factors.h) resolve each link to the leaves on both sides
+//    with the leaves' own factors, scaled to the link's exact exchange, instead of giving every
+//    leaf below the receiver the receiver's average factor and gathering the source's area mean:
+//    each leaf's factors then sum to 1 in a closed room up to quadrature (HSA's summed from 0.8 to
+//    1.24 on corner elements, which put them 5% off at rho = 0.9 and can make Jacobi diverge as
+//    rho -> 1), and each leaf's emitted power is conserved (HSA conserve it per patch only: 1.5%
+//    of a tiny light's power went missing in a 1 km room lit unevenly).
 //
 // Defaults (SolveOptions: feps and bfeps 0 = unused, aeps 0 = automatic). Both are unit-
 // independent: feps is a pure number, aeps a fraction of the scene's total area. With neither
-// --feps nor --bfeps, feps = kAutoFeps. They were chosen by sweeps (feps 0.1 .. 0.001, aeps
-// total/20000 .. total/500) on cornell_box.obj (mm) and a closed 4 x 2.5 x 5 box:
-//   * feps 0.02, aeps total/2000 (the lecture's kind of setting): Cornell box in ~2 s, but a closed
-//     box at rho = 0.9 is 9% off on whole walls: an element inherits its ancestors' average factors
-//     (a corner element's sum to 1.24 instead of 1), and at rho = 0.9 that bias is amplified;
-//   * smaller aeps makes this worse (more corner elements linked through coarse ancestors) and
-//     costs more; smaller feps makes it better: feps 0.005 with aeps total/500 puts every wall of
-//     the box within 0.4% at rho = 0.9 (elements within 5%), and the Cornell box solves in ~2.5 s
-//     (2 cores) with every patch within 2% (of the brighter of the patch and the mean reflector
-//     radiosity) of the full matrix with similar elements (~500).
-// There is no automatic bfeps: B*F refinement (HSA sec. 4.2) is used when --bfeps is given.
+// --feps nor --bfeps, feps = kAutoFeps. Measured (Release, 2 cores shared with other jobs, so
+// seconds are +-50%; a scratch driver over solve(); worst = largest |B / (E / (1 - rho)) - 1|):
+//  * closed rooms at the defaults, rho = 0.5 / 0.9 / 0.99 / 0.999 (0.999 converges in ~6900
+//    iterations, within the default max_iterations):
+//      4 x 2.5 x 5 box             worst 5e-7 / 8e-6 / 1e-4 / 1e-3  (384 elements, 22464 links)
+//      the same with T-junctions   worst 8e-7 / 8e-6 / 1e-4 / 1e-3  (432 elements)
+//      faceted sphere, 48 facets   worst 3e-5 / 5e-5 / 1e-4 / 1e-3  (576 elements)
+//    From rho = 0.9 on this is the stopping test's share (tolerance 1e-6 leaves ~1e-6 / (1 - rho)).
+//    HSA's push with their oracle (feps 0.005, aeps total/500) left the box 2.2% / 4.7% / 7.7% off;
+//    the new oracle alone was worse (fewer links): the push fixes rooms at any feps;
+//  * cornell_box.obj against the full matrix at its defaults (492 elements, 16 visibility
+//    samples): worst |B_hr - B_full| over patches and channels relative to the larger of the
+//    patch's brightest channel and the reflectors' mean; HR's seconds / elements / links:
+//      feps 0.04   1.9%  1.8 s  492 / 11864        feps 0.005   0.8%  7.4 s  492 / 47692
+//      feps 0.02   1.6%  2.5 s  492 / 20778        feps 0.0025  0.3% 10.4 s  492 / 65528
+//      feps 0.01   0.8%  2.2-4.5 s 492 / 31310     (aeps total/1000; at feps 0.01, 2.2 s unloaded)
+//    With 9 visibility samples for both, feps 0.01: 1.4%. HSA's oracle and push at the old defaults
+//    (feps 0.005, aeps total/500): 5.4%, 297 elements, 29924 links, ~2 s. The full matrix itself
+//    is up to 2.9% from one with 4x smaller elements (1968), and so is HR at feps 0.0025.
+//    Before the partly visible rule bounded point factors, a floor / back-wall pair whose 16
+//    samples all hit a block was linked with factor 0 and the box came out 27% dark.
+// So kAutoFeps = 0.01 and aeps = total/1000: rooms exact per element, the Cornell box within 1%
+// of the full matrix in a few seconds. There is no automatic bfeps: B*F refinement (HSA sec. 4.2)
+// is used when --bfeps is given.
 #pragma once
 
 #include "hrad/core/scene.h"
@@ -53,7 +83,8 @@ HierarchicalTolerances hierarchical_tolerances(const Scene& scene, const SolveOp
 /// Solves `scene` by hierarchical radiosity (options.method is ignored) and writes the leaves to
 /// `out` (if not null). Summary: links counts directed links (each stored interaction is gathered
 /// both ways and counts twice, as the n^2 of the full matrix counts both directions); figures
-/// "feps", "bfeps", "aeps", "refine_passes", "link_pairs", "min_element_area", "max_depth".
+/// "feps", "bfeps", "aeps", "refine_passes", "link_pairs", "leaf_links" (terms gathered per
+/// iteration, see hierarchical_leaf_factors.h), "min_element_area", "max_depth".
 SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& options, Solution* out);
 
 }  // namespace hrad

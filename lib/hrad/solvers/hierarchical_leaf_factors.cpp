@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cmath>
-#include <cstddef>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -16,75 +15,121 @@ double leaf_form_factor(std::span<const Vec3> element, std::span<const Vec3> sou
   const Vec3 n = newell_normal(element).normalized();
   double sum = 0.0, weights = 0.0;
   if (element.size() == 4) {
-    // 2 x 2 Gauss-Legendre on the bilinear map of [0,1]^2 onto the quad, weighted by its Jacobian
-    // (exact for the area; degree 3 in (u, v)).
-    const double g = 0.5 / std::sqrt(3.0);
-    const std::array<double, 2> t = {0.5 - g, 0.5 + g};
+    // 3 x 3 Gauss-Legendre on the bilinear map of [0,1]^2 onto the quad, weighted by its Jacobian
+    // (degree 5 in (u, v); the weights sum to the area exactly).
+    const double g = 0.5 * std::sqrt(0.6);
+    const std::array<double, 3> t = {0.5 - g, 0.5, 0.5 + g};
+    const std::array<double, 3> tw = {5.0, 8.0, 5.0};
     const Vec3 &a = element[0], &b = element[1], &c = element[2], &d = element[3];
-    for (const double u : t)
-      for (const double v : t) {
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const double u = t[i], v = t[j];
         const Vec3 x = (1 - u) * (1 - v) * a + u * (1 - v) * b + u * v * c + (1 - u) * v * d;
         const Vec3 du = (1 - v) * (b - a) + v * (c - d);
         const Vec3 dv = (1 - u) * (d - a) + u * (c - b);
-        const double w = du.cross(dv).norm();
+        const double w = tw[i] * tw[j] * du.cross(dv).norm();
         sum += w * point_to_polygon(x, n, source);
         weights += w;
       }
   } else {
-    // Strang & Fix's 3-point rule (barycentric (2/3, 1/6, 1/6) and permutations; degree 2).
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 x = (2.0 / 3.0) * element[k] + (1.0 / 6.0) * (element[(k + 1) % 3] + element[(k + 2) % 3]);
-      sum += point_to_polygon(x, n, source);
-      weights += 1.0;
-    }
+    // Dunavant's 6-point rule (degree 4; Dunavant 1985, "High degree efficient symmetrical
+    // Gaussian quadrature rules for the triangle", table for p = 4).
+    const std::array<std::array<double, 2>, 2> rule = {{{0.445948490915965, 0.223381589678011},
+                                                       {0.091576213509771, 0.109951743655322}}};
+    for (const auto& [a, w] : rule)
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 x = (1.0 - 2.0 * a) * element[k] + a * (element[(k + 1) % 3] + element[(k + 2) % 3]);
+        sum += w * point_to_polygon(x, n, source);
+        weights += w;
+      }
   }
   return sum / weights;
 }
 
-std::vector<Link> leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs) {
-  // Directed links first, then the leaves each one reaches, then the factors in parallel.
-  struct Directed {
-    NodeId receiver, source;
-    double factor, visibility;
-    std::size_t first;  // offset of its leaf links in the output
+LeafLinks leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs) {
+  LeafLinks out;
+  out.pairs.reserve(pairs.size());
+  std::vector<std::vector<NodeId>> leaves_of(h.size());  // memoised leaves_below of interior nodes
+  auto count = [&](NodeId id) -> std::size_t {
+    if (h.node(id).is_leaf()) return 1;
+    std::vector<NodeId>& l = leaves_of[static_cast<std::size_t>(id)];
+    if (l.empty()) l = h.leaves_below(id);
+    return l.size();
   };
-  std::vector<Directed> directed;
-  directed.reserve(2 * pairs.size());
   std::size_t total = 0;
-  std::vector<std::vector<NodeId>> leaves_of(h.size());  // memoised leaves_below of interior receivers
-  auto add = [&](NodeId r, NodeId s, double f, double vis) {
-    if (f <= 0.0) return;
-    const ElementNode& n = h.node(r);
-    std::size_t count = 1;
-    if (!n.is_leaf()) {
-      std::vector<NodeId>& l = leaves_of[static_cast<std::size_t>(r)];
-      if (l.empty()) l = h.leaves_below(r);
-      count = l.size();
-    }
-    directed.push_back({r, s, f, vis, total});
-    total += count;
-  };
   for (const LinkPair& pair : pairs) {
-    add(pair.p, pair.q, pair.estimate.value, pair.estimate.visibility);
-    add(pair.q, pair.p, pair.estimate.reverse, pair.estimate.visibility);
+    LeafLinks::Pair e;
+    e.p_first = total;
+    e.p_count = count(pair.p);
+    e.q_first = total + e.p_count;
+    e.q_count = count(pair.q);
+    total += e.p_count + e.q_count;
+    out.pairs.push_back(e);
   }
-  std::vector<Link> links(total);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, directed.size(), 8),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        const Directed& d = directed[i];
-                        if (h.node(d.receiver).is_leaf()) {
-                          links[d.first] = {d.receiver, d.source, d.factor};
-                          continue;
-                        }
-                        const std::vector<NodeId>& l = leaves_of[static_cast<std::size_t>(d.receiver)];
-                        const std::span<const Vec3> source = h.node(d.source).polygon();
-                        for (std::size_t k = 0; k < l.size(); ++k)
-                          links[d.first + k] = {l[k], d.source,
-                                                d.visibility * leaf_form_factor(h.node(l[k]).polygon(), source)};
-                      }
-                    });
-  return links;
+  out.leaf.resize(total);
+  out.factor.resize(total);
+  out.weight.resize(total);
+  // One side: leaves below `r` against `s`, whose total exchange A_r F(r -> s) is `exchange`.
+  auto resolve = [&](NodeId r, NodeId s, double f_rs, double exchange, std::size_t first) {
+    const ElementNode& rn = h.node(r);
+    if (rn.is_leaf()) {
+      out.leaf[first] = r;
+      out.factor[first] = f_rs;
+      out.weight[first] = 1.0;
+      return;
+    }
+    const std::vector<NodeId>& l = leaves_of[static_cast<std::size_t>(r)];
+    const std::span<const Vec3> source = h.node(s).polygon();
+    double weighted = 0.0;
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      const ElementNode& leaf = h.node(l[k]);
+      const double f = leaf_form_factor(leaf.polygon(), source);
+      out.leaf[first + k] = l[k];
+      out.factor[first + k] = f;
+      weighted += leaf.area * f;
+    }
+    // Scaled to the link's exact exchange (visible fraction included); where the rule sees
+    // nothing (the source grazes every leaf), HSA's uniform push and area-weighted mean.
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      const double area = h.node(l[k]).area;
+      if (!(exchange > 0.0)) {  // linked with a sampled visible fraction of 0
+        out.factor[first + k] = 0.0;
+        out.weight[first + k] = area / rn.area;
+      } else if (weighted > 0.0) {
+        out.factor[first + k] *= exchange / weighted;
+        out.weight[first + k] = area * out.factor[first + k] / exchange;
+      } else {
+        out.factor[first + k] = f_rs;
+        out.weight[first + k] = area / rn.area;
+      }
+    }
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs.size(), 8), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const LinkPair& pair = pairs[i];
+      const LeafLinks::Pair& e = out.pairs[i];
+      // A_p F(p -> q) = A_q F(q -> p) (the analytic kernel is reciprocal to rounding).
+      const double exchange = h.node(pair.p).area * pair.estimate.value;
+      resolve(pair.p, pair.q, pair.estimate.value, exchange, e.p_first);
+      resolve(pair.q, pair.p, pair.estimate.reverse, exchange, e.q_first);
+    }
+  });
+  return out;
+}
+
+void gather_leaf_links(ElementHierarchy& h, const LeafLinks& links) {
+  for (std::size_t i = 0; i < h.size(); ++i) h.node(static_cast<NodeId>(i)).gathered = Rgb::Zero();
+  auto mean = [&](std::size_t first, std::size_t n) {
+    Rgb b = Rgb::Zero();
+    for (std::size_t k = first; k < first + n; ++k) b += links.weight[k] * h.node(links.leaf[k]).radiosity;
+    return b;
+  };
+  for (const LeafLinks::Pair& e : links.pairs) {
+    const Rgb b_q = mean(e.q_first, e.q_count);
+    const Rgb b_p = mean(e.p_first, e.p_count);
+    for (std::size_t k = e.p_first; k < e.p_first + e.p_count; ++k) h.node(links.leaf[k]).gathered += links.factor[k] * b_q;
+    for (std::size_t k = e.q_first; k < e.q_first + e.q_count; ++k) h.node(links.leaf[k]).gathered += links.factor[k] * b_p;
+  }
 }
 
 }  // namespace hrad::detail

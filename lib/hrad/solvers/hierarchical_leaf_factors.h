@@ -1,31 +1,35 @@
-// Links gathered by the leaves: HSA's push with each leaf's own factor.
+// Links resolved to the leaves on both sides: HSA's push and pull with each leaf's own factor.
 //
 // HSA 1991 gather at the link's receiver, an interior node a, and push the gathered irradiance
 // F(a -> q) B_q down to every leaf below a unchanged. A leaf thus receives its ancestors' average
 // factors, so the factors one leaf gathers through (its own links and its ancestors') do not sum
 // to its true total: in a closed room they sum to 1 per patch (the links tile patch x room) but
-// from 0.8 to 1.24 per element, which puts corner elements 5% off at rho = 0.9 and makes Jacobi
-// diverge at rho = 0.99 (rho times the largest eigenvalue passes 1).
+// from 0.8 to 1.24 per element, which put corner elements 5% off at rho = 0.9 and could make
+// Jacobi diverge as rho -> 1. The source side has the same defect: q's mean B_q weights q's
+// leaves by area, not by how much each sends to a, so the power a leaf sends through its
+// ancestors' links is off by the same factor (1.5% of a tiny light's power went missing in a
+// 1 km room whose floor is lit unevenly).
 //
-// Here the push keeps the link (its source q, the visible fraction, the hierarchy of q that
-// provides B_q) but weights it per leaf L with L's own unoccluded factor F(L -> q), from a
-// product Gauss rule on L (2 x 2 on a quad, 3 points on a triangle) and Lambert's point-to-polygon
-// formula at each point: the receiver side is resolved to the leaves as the full matrix resolves
-// it, and the source side stays hierarchical. Each point's factors to sources tiling a closed room
-// sum to 1 exactly (Lambert's formula is exact; the sources a leaf reaches through its ancestors'
-// links and its own tile the room), so the rows sum to 1 up to how well the rule integrates F over
-// L for the sources L reaches through its ancestors; the refinement keeps those far from L (their
-// factors vary little over the ancestor), where the rule is accurate. Links whose receiver is a
-// leaf keep their exact analytic factor. Cost: one term per (leaf, link of an ancestor), computed
-// once per refinement in parallel and gathered each iteration.
+// Here each link (p, q) keeps its level, its visible fraction and its total exchange
+// A_p F(p -> q) = A_q F(q -> p), but is resolved on both sides to the leaves below p and q with
+// the leaves' own unoccluded factors f(L -> q), f(M -> p) (a Gauss rule on the leaf, 3 x 3 on a
+// quad and Dunavant's 6 points on a triangle, with Lambert's point-to-polygon formula at each
+// point), scaled so that sum_L A_L f(L -> q) = A_p F(p -> q) exactly. The link's leaf-to-leaf
+// block is approximated by the separable K(L, M) = f(L -> q) w_M, w_M = A_M f(M -> p) /
+// (A_q F(q -> p)): leaf L gathers f(L -> q) times the w-weighted mean of q's leaves. Its rows sum
+// to f(L -> q) (closure: a leaf's factors to sources tiling a closed room sum to 1 up to the
+// rule, since Lambert's formula is exact at each point) and its columns carry A_M f(M -> p)
+// (reciprocity per leaf, so power balances exactly). A side that is a leaf keeps the exact
+// analytic factor. Cost: one term per (leaf, link of the leaf or of an ancestor), computed once
+// per refinement in parallel, and two passes over them per iteration.
 #pragma once
 
+#include <cstddef>
 #include <span>
 #include <vector>
 
 #include "hrad/mesh/element_hierarchy.h"
 #include "hrad/solvers/hierarchical_refine.h"
-#include "hrad/solvers/solver_context.h"
 
 namespace hrad::detail {
 
@@ -33,9 +37,24 @@ namespace hrad::detail {
 /// element's normal from its vertex order).
 double leaf_form_factor(std::span<const Vec3> element, std::span<const Vec3> source);
 
-/// The links of `pairs`, both directions, with every receiver a leaf: a link to a leaf keeps its
-/// factor; a link to an interior node a becomes one link per leaf L below a with factor
-/// visibility * leaf_form_factor(L, q). Deterministic order (pair order, then leaves_below()).
-std::vector<Link> leaf_links(const ElementHierarchy& hierarchy, std::span<const LinkPair> pairs);
+/// The link pairs resolved to leaves. Pair k's p side is entries [pairs[k].p_first, + p_count),
+/// its q side [q_first, + q_count).
+struct LeafLinks {
+  struct Pair {
+    std::size_t p_first = 0, p_count = 0, q_first = 0, q_count = 0;
+  };
+  std::vector<Pair> pairs;
+  std::vector<NodeId> leaf;    ///< the leaf of each entry
+  std::vector<double> factor;  ///< f(leaf -> the other side's node), visible fraction included
+  std::vector<double> weight;  ///< A_leaf f / (A_p F(p -> q)): the leaf's share of its side's exchange
+  std::size_t size() const { return leaf.size(); }
+};
+
+/// Resolves `pairs` (links with estimates) to leaves as described above. Deterministic order.
+LeafLinks leaf_links(const ElementHierarchy& hierarchy, std::span<const LinkPair> pairs);
+
+/// Sets every node's `gathered` to 0, then for every pair adds to each leaf L of one side
+/// f(L -> other) times the weighted mean radiosity of the other side's leaves (all channels).
+void gather_leaf_links(ElementHierarchy& hierarchy, const LeafLinks& links);
 
 }  // namespace hrad::detail

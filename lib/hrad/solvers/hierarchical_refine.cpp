@@ -23,11 +23,13 @@ bool can_split(const ElementNode& node, double aeps) { return node.area * 0.25 >
 enum class Decision { kDrop, kLink, kSplitP, kSplitQ };
 
 Decision decide(const ElementHierarchy& h, const RefineCandidate& c, const RefineTolerances& tol, int channels) {
-  const FormFactorEstimate& e = c.estimate;
-  if (e.facing_away) return Decision::kDrop;
-  // Fully hidden (visibility classified 0 exactly) or coplanar: the pair exchanges nothing.
-  if (e.value <= 0.0 && e.reverse <= 0.0 && e.error <= 0.0) return Decision::kDrop;
-  if (!pair_needs_refinement(h, c, tol, channels)) return Decision::kLink;
+  if (!c.split_unevaluated) {
+    const FormFactorEstimate& e = c.estimate;
+    if (e.facing_away) return Decision::kDrop;
+    // Fully hidden (visibility classified 0 exactly) or coplanar: the pair exchanges nothing.
+    if (e.value <= 0.0 && e.reverse <= 0.0 && e.error <= 0.0) return Decision::kDrop;
+    if (!pair_needs_refinement(h, c, tol, channels)) return Decision::kLink;
+  }
   const ElementNode& p = h.node(c.p);
   const ElementNode& q = h.node(c.q);
   // Split the element over which the factor varies more (its children's links then vary less);
@@ -46,14 +48,14 @@ Decision decide(const ElementHierarchy& h, const RefineCandidate& c, const Refin
 
 }  // namespace
 
-PointFactorSpread factor_variation(std::span<const Vec3> receiver, std::span<const Vec3> source, double average) {
+PointFactorSpread factor_variation(std::span<const Vec3> receiver, std::span<const Vec3> source) {
   const Vec3 n = newell_normal(receiver).normalized();
   const std::size_t k = receiver.size();
   PointFactorSpread spread;
   auto sample = [&](const Vec3& x) {
     const double f = point_to_polygon(x, n, source);
-    spread.deviation = std::max(spread.deviation, std::abs(f - average));
     spread.largest = std::max(spread.largest, f);
+    spread.smallest = std::min(spread.smallest, f);
   };
   sample(polygon_centroid(receiver));
   for (std::size_t i = 0; i < k; ++i) {
@@ -65,28 +67,47 @@ PointFactorSpread factor_variation(std::span<const Vec3> receiver, std::span<con
   return spread;
 }
 
-void evaluate_candidate(const ElementHierarchy& h, const FormFactorEvaluator& evaluator, RefineCandidate& c) {
+void evaluate_candidate(const ElementHierarchy& h, const FormFactorEvaluator& evaluator, RefineCandidate& c,
+                        const RefineTolerances* tol) {
   const ElementNode& p = h.node(c.p);
   const ElementNode& q = h.node(c.q);
-  c.estimate = evaluator.estimate(p.polygon(), p.patch, q.polygon(), q.patch);
   c.evaluated = true;
+  c.split_unevaluated = false;
+  c.estimate = FormFactorEstimate{};
   c.variation_p = c.variation_q = 0.0;
+  const PointFactorSpread s_p = factor_variation(p.polygon(), q.polygon());
+  const PointFactorSpread s_q = factor_variation(q.polygon(), p.polygon());
+  if (tol != nullptr && tol->feps > 0.0 && tol->bfeps <= 0.0 && (can_split(p, tol->aeps) || can_split(q, tol->aeps))) {
+    // Whatever the average, some sample deviates from it by at least half the samples' spread, so
+    // the full test below would refine too (unless the pair is hidden or faces away, whose
+    // children are then dropped one level lower): split without the kernel and visibility calls,
+    // which cost ~10x the point factors. Not with bfeps, whose passes re-test the stored pairs.
+    const double half_p = 0.5 * (s_p.largest - s_p.smallest);
+    const double half_q = 0.5 * (s_q.largest - s_q.smallest);
+    if (std::max(tol->weight(q.patch) * half_p, tol->weight(p.patch) * half_q) > tol->feps) {
+      c.variation_p = half_p;
+      c.variation_q = half_q;
+      c.split_unevaluated = true;
+      return;
+    }
+  }
+  c.estimate = evaluator.estimate(p.polygon(), p.patch, q.polygon(), q.patch);
   const FormFactorEstimate& e = c.estimate;
   // Facing away, hidden or coplanar: dropped, nothing to bound. A partly visible pair whose samples
   // all hit an occluder has value 0 but an error, and is bounded below.
   if (e.facing_away || (e.value <= 0.0 && e.reverse <= 0.0 && e.error <= 0.0)) return;
   const double f_pq = e.unoccluded;
   const double f_qp = e.unoccluded * p.area / q.area;  // reciprocity
-  const PointFactorSpread s_p = factor_variation(p.polygon(), q.polygon(), f_pq);
-  const PointFactorSpread s_q = factor_variation(q.polygon(), p.polygon(), f_qp);
+  const double dev_p = std::max(s_p.largest - f_pq, f_pq - s_p.smallest);
+  const double dev_q = std::max(s_q.largest - f_qp, f_qp - s_q.smallest);
   if (e.visibility >= 1.0) {
-    c.variation_p = s_p.deviation;
-    c.variation_q = s_q.deviation;
+    c.variation_p = dev_p;
+    c.variation_q = dev_q;
   } else {
     // Partly visible: a shadow boundary may cross the receiver, and every point of it gets the
     // pair's mean visible fraction, so a point's error can be as large as its unoccluded factor.
-    c.variation_p = std::max(e.visibility * s_p.deviation, s_p.largest);
-    c.variation_q = std::max(e.visibility * s_q.deviation, s_q.largest);
+    c.variation_p = std::max(e.visibility * dev_p, s_p.largest);
+    c.variation_q = std::max(e.visibility * dev_q, s_q.largest);
   }
 }
 
@@ -103,9 +124,7 @@ bool pair_needs_refinement(const ElementHierarchy& h, const RefineCandidate& c, 
   const double error_p = c.variation_p + err_pq;  // of what p gathers from q, per unit B_q
   const double error_q = c.variation_q + err_qp;
   if (tol.feps > 0.0) {
-    const double w_p = tol.source_weight.empty() ? 1.0 : tol.source_weight[static_cast<std::size_t>(p.patch)];
-    const double w_q = tol.source_weight.empty() ? 1.0 : tol.source_weight[static_cast<std::size_t>(q.patch)];
-    if (std::max(w_q * error_p, w_p * error_q) > tol.feps) return true;
+    if (std::max(tol.weight(q.patch) * error_p, tol.weight(p.patch) * error_q) > tol.feps) return true;
   }
   if (tol.bfeps > 0.0) {
     // HSA 1991 sec. 4.2: what p gathers from q is B_q F(p->q), and the other way round.
@@ -156,7 +175,7 @@ RefineResult refine_pairs(ElementHierarchy& h, const FormFactorEvaluator& evalua
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
                           RefineCandidate& c = work[i];
-                          if (!c.evaluated) evaluate_candidate(h, evaluator, c);
+                          if (!c.evaluated) evaluate_candidate(h, evaluator, c, &tol);
                         }
                       });
     next.clear();

@@ -34,6 +34,8 @@ struct RefineCandidate {
   double variation_p = 0.0;
   /// The same for q's points and F(q -> p).
   double variation_q = 0.0;
+  /// Split on its point factors alone (see evaluate_candidate()): estimate not computed.
+  bool split_unevaluated = false;
 };
 
 /// A fresh candidate for the pair (p, q).
@@ -55,6 +57,7 @@ struct RefineTolerances {
   /// Per patch: the feps test compares a link's factor error times the weight of its source's
   /// patch (see source_weights()); empty = weight 1 everywhere.
   std::vector<double> source_weight;
+  double weight(int patch) const { return source_weight.empty() ? 1.0 : source_weight[static_cast<std::size_t>(patch)]; }
 };
 
 /// The weights of the feps test: a priori radiosity of each patch relative to the scene's,
@@ -82,15 +85,19 @@ RefineResult refine_pairs(ElementHierarchy& hierarchy, const FormFactorEvaluator
 
 /// Point-to-polygon factors F(x -> source) over the sample points x of a receiver (its vertices,
 /// edge midpoints and centroid; point_to_polygon() with the receiver's normal; points in the
-/// source's plane, e.g. on a shared edge, count as 0, which only makes the spread larger).
+/// source's plane, e.g. on a shared edge, count as 0, which only makes the spread larger). The
+/// largest deviation from an average a is max(largest - a, a - smallest).
 struct PointFactorSpread {
-  double deviation = 0.0;  ///< largest |F(x -> source) - average|
-  double largest = 0.0;    ///< largest F(x -> source)
+  double largest = 0.0;
+  double smallest = 1e300;
 };
-PointFactorSpread factor_variation(std::span<const Vec3> receiver, std::span<const Vec3> source, double average);
+PointFactorSpread factor_variation(std::span<const Vec3> receiver, std::span<const Vec3> source);
 
-/// Fills c.estimate, c.variation_p and c.variation_q (c.evaluated = true).
-void evaluate_candidate(const ElementHierarchy& hierarchy, const FormFactorEvaluator& evaluator, RefineCandidate& c);
+/// Fills c.estimate, c.variation_p and c.variation_q (c.evaluated = true). With `tolerances` (feps
+/// only, and one of the pair splittable), a pair whose point factors alone prove it needs refining
+/// is marked split_unevaluated, without a kernel or visibility call.
+void evaluate_candidate(const ElementHierarchy& hierarchy, const FormFactorEvaluator& evaluator, RefineCandidate& c,
+                        const RefineTolerances* tolerances = nullptr);
 
 /// True when the pair must be refined further under `tolerances`: the factors' variation (see the
 /// file comment) or their visibility error exceeds feps, or either times the source's current
