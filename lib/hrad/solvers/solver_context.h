@@ -14,9 +14,11 @@
 //   }
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
@@ -125,6 +127,26 @@ struct Link {
 /// `gathered` (all channels; Hanrahan, Salzman & Aupperle 1991, "GatherRad"). Deterministic:
 /// links are summed in their order.
 void gather(ElementHierarchy& hierarchy, std::span<const Link> links);
+
+/// The links of a gather grouped by receiver (counting sort, stable: each receiver keeps its
+/// links in their order), structure of arrays: 12 bytes per link (32-bit source, double factor)
+/// plus 8 bytes per node. gather(hierarchy, plan) sums each receiver's links in that order, in
+/// parallel over receivers: the same bits as gather(hierarchy, links) at any thread count.
+class GatherPlan {
+ public:
+  GatherPlan(std::size_t nodes, std::span<const Link> links);
+  std::size_t links() const { return source_.size(); }
+  std::size_t bytes() const;
+
+ private:
+  friend void gather(ElementHierarchy& hierarchy, const GatherPlan& plan);
+  std::vector<std::uint64_t> offsets_;
+  std::vector<NodeId> source_;
+  std::vector<double> factor_;
+};
+
+/// Parallel gather over `plan` (built for this hierarchy's size); see GatherPlan.
+void gather(ElementHierarchy& hierarchy, const GatherPlan& plan);
 
 /// Push-pull over every tree (HSA 1991, "PushPullRad"): gathered radiosity is pushed down to the
 /// leaves (adding parents' `gathered` to their children's), each leaf gets B = E + rho * (total
