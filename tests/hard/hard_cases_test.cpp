@@ -191,9 +191,8 @@ TEST(HardCases, SameSceneAtScales1e6And1eMinus6) {
 
 // Reflectance 0.999 in a closed room: Jacobi contracts by 0.999 per iteration at best. Outcome:
 //  * with few iterations every iterative solver stops with a status (kMaxIterations) and finite values;
-//  * given enough, the hierarchical solver either converges to E/(1-rho) within 1% or reports
-//    divergence as a status with finite values (HSA's mixed-level factors need not sum to exactly
-//    1 per element, so rho * spectral radius can pass 1 as rho -> 1): never NaN, never silence;
+//  * given enough, the hierarchical solver converges to E/(1-rho) within 1e-3 per element (its
+//    links are resolved to the leaves on both sides, so every element's factors sum to 1);
 //  * the full matrix (LU) is exact to 1e-8.
 TEST(HardCases, Reflectance0999ClosedRoom) {
   const double rho = 0.999, e = 1.0;
@@ -216,10 +215,8 @@ TEST(HardCases, Reflectance0999ClosedRoom) {
   const SolveSummary s = solve(box, hr, &sol);
   for (const Rgb& b : sol.face_radiosity) EXPECT_TRUE(b.allFinite());
   EXPECT_FALSE(s.message.empty());
-  if (s.termination == Termination::kConverged)
-    EXPECT_LT(max_relative_deviation(sol, e / (1 - rho)), 0.01);
-  else
-    EXPECT_EQ(s.termination, Termination::kFailed) << s.message;  // reported divergence
+  EXPECT_EQ(s.termination, Termination::kConverged) << s.message;
+  EXPECT_LT(max_relative_deviation(sol, e / (1 - rho)), 1e-3);
   const Solution lu = solve_finite(box, full(0.1));
   EXPECT_LT(max_relative_deviation(lu, e / (1 - rho)), 1e-8);
 }
@@ -250,7 +247,7 @@ TEST(HardCases, EmitterTouchingReceivers) {
 
 // A tiny emitter in a huge room: a 1 cm light 1 m below the ceiling of a 1 km box. Outcome: the walls
 // absorb the emitted power within 1e-5 (full, LU, analytic kernel; the light hides bits of the
-// ceiling, so sampled visibility enters) and within 1% with the hierarchical solver.
+// ceiling, so sampled visibility enters) and within 1e-4 with the hierarchical solver.
 TEST(HardCases, TinyEmitterInHugeRoom) {
   const double L = 1000.0, t = 0.01;
   Scene s = make_box(L, L, L, {material(Rgb::Constant(0.5), Rgb::Zero()), material(Rgb::Zero(), Rgb::Constant(1e6))},
@@ -283,7 +280,7 @@ TEST(HardCases, TinyEmitterInHugeRoom) {
     for (int v : h.faces[f]) poly.push_back(h.vertices[v]);
     absorbed_hr += polygon_area(poly) * (1 - 0.5) / 0.5 * h.face_radiosity[f][0];
   }
-  EXPECT_NEAR(absorbed_hr / emitted, 1.0, 0.01);
+  EXPECT_NEAR(absorbed_hr / emitted, 1.0, 1e-4);  // measured 1e-6 with leaf-resolved links
 }
 
 // Non-planar and non-convex input faces: a closed box read from OBJ whose top is an L-shaped
