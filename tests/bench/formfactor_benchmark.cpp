@@ -8,7 +8,9 @@
 // and one division (the atan2 was half the time with the C library's); quad-to-quad in general
 // position, 16 skew edge pairs whose Clausen-type remainder takes ~11.7 Gauss nodes each (about
 // two thirds of the time), the closed-form logarithmic part the rest (its logs and atans computed
-// once per edge and vertex, not per pair).
+// once per edge and vertex, not per pair). Measured 2026-11-22 against the kernels before these
+// changes, in one run on the shared machine (load 5.8): point-to-quad 121 -> 104 ns (9.6 M/s),
+// quad-to-quad general 10.0 -> 4.75 us (210 k/s), other paths unchanged.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
