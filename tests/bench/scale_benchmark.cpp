@@ -60,3 +60,4 @@ BENCHMARK(BM_Clustered)->Arg(250)->Arg(1000)->Arg(4000)->Arg(16000)->Iterations(
 BENCHMARK(BM_Unclustered)->Arg(250)->Arg(1000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 BENCHMARK(BM_ClusteredOneThread)->Arg(1000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 BENCHMARK(BM_ClusteredTwoThreads)->Arg(1000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK_MAIN();

@@ -170,7 +170,6 @@ class ClusteredSolver {
       if (l.f_pq > 0.0f) ++off[dense(l.p) + 1];
       if (l.f_qp > 0.0f) ++off[dense(l.q) + 1];
     }
-    for (const Link& l : leaf_links_) ++offsets_[static_cast<std::size_t>(l.receiver) + 1];
     for (std::size_t i = 0; i < n; ++i) {
       offsets_[i + 1] += offsets_[i];
       cluster_offsets_[i + 1] += cluster_offsets_[i];
@@ -193,10 +192,7 @@ class ClusteredSolver {
       if (l.f_pq > 0.0f) cluster_links_[cluster_cursor[dp]++] = {static_cast<std::int32_t>(dq), l.f_pq, to_q};
       if (l.f_qp > 0.0f) cluster_links_[cluster_cursor[dq]++] = {static_cast<std::int32_t>(dp), l.f_qp, to_p};
     }
-    for (const Link& l : leaf_links_)
-      links_[cursor[static_cast<std::size_t>(l.receiver)]++] = {l.source, static_cast<float>(l.form_factor)};
     leaf_link_count_ = leaf_links_.size();
-    std::vector<Link>().swap(leaf_links_);
   }
 
   /// Jacobi iterations of gather and push-pull; false when it stopped without converging.
@@ -249,7 +245,10 @@ class ClusteredSolver {
   std::uint64_t cluster_estimates() const { return transfer_.estimates(); }
   std::size_t link_bytes() const {
     return links_.capacity() * sizeof(DirectedLink) + cluster_links_.capacity() * sizeof(ClusterLink) +
-           (offsets_.capacity() + cluster_offsets_.capacity()) * sizeof(std::uint64_t);
+           (offsets_.capacity() + cluster_offsets_.capacity()) * sizeof(std::uint64_t) +
+           leaf_links_.leaf.capacity() * sizeof(NodeId) +
+           (leaf_links_.factor.capacity() + leaf_links_.weight.capacity()) * sizeof(double) +
+           leaf_links_.pairs.capacity() * sizeof(detail::LeafLinks::Pair);
   }
   std::size_t stored_cluster_links() const { return cluster_links_.size(); }
   const std::vector<PairLink>& pairs() const { return pairs_; }
@@ -411,10 +410,15 @@ class ClusteredSolver {
   // own links in their fixed order, so the bits do not depend on the thread count.
   void gather() {
     const std::size_t elements = h_.size();
+    // Near element pairs: solve_hierarchical()'s leaf-resolved gather, on the hierarchy's nodes.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) h_.node(static_cast<NodeId>(i)).radiosity = radiosity_[i];
+    });
+    detail::gather_leaf_links(h_, leaf_links_);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, dense_size(), 512),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                          Rgb sum = Rgb::Zero();
+                          Rgb sum = i < elements ? h_.node(static_cast<NodeId>(i)).gathered : Rgb::Zero();
                           for (std::uint64_t k = offsets_[i]; k < offsets_[i + 1]; ++k)
                             sum += static_cast<double>(links_[k].factor) *
                                    radiosity_[static_cast<std::size_t>(links_[k].source)];
@@ -527,7 +531,7 @@ class ClusteredSolver {
   std::vector<double> cluster_weight_;
   std::vector<PairLink> pairs_;  // far-field and cluster links (then element pairs when recording links)
   std::size_t cluster_pairs_ = 0;
-  std::vector<Link> leaf_links_;
+  detail::LeafLinks leaf_links_;  // near element pairs, resolved to leaves (solve_hierarchical's gather)
   std::size_t element_pairs_ = 0, element_directed_ = 0, leaf_link_count_ = 0;
   bool recorded_element_pairs_ = false;
   std::vector<std::uint64_t> offsets_;
