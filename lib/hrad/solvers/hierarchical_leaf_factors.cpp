@@ -114,16 +114,56 @@ LeafLinks leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs)
       resolve(pair.q, pair.p, pair.estimate.reverse, exchange, e.q_first);
     }
   });
+  // Entries grouped by leaf for the parallel gather (stable counting sort keeps entry order).
+  if (total < (std::size_t{1} << 32) && 2 * pairs.size() < (std::size_t{1} << 32)) {
+    out.leaf_offsets.assign(h.size() + 1, 0);
+    out.other_side.resize(total);
+    for (std::size_t k = 0; k < out.pairs.size(); ++k) {
+      const LeafLinks::Pair& e = out.pairs[k];
+      for (std::size_t i = e.p_first; i < e.p_first + e.p_count; ++i) out.other_side[i] = static_cast<std::uint32_t>(2 * k);
+      for (std::size_t i = e.q_first; i < e.q_first + e.q_count; ++i) out.other_side[i] = static_cast<std::uint32_t>(2 * k + 1);
+    }
+    for (const NodeId l : out.leaf) ++out.leaf_offsets[static_cast<std::size_t>(l) + 1];
+    for (std::size_t i = 0; i < h.size(); ++i) out.leaf_offsets[i + 1] += out.leaf_offsets[i];
+    out.by_leaf.resize(total);
+    std::vector<std::uint64_t> cursor(out.leaf_offsets.begin(), out.leaf_offsets.end() - 1);
+    for (std::size_t i = 0; i < total; ++i)
+      out.by_leaf[cursor[static_cast<std::size_t>(out.leaf[i])]++] = static_cast<std::uint32_t>(i);
+  }
   return out;
 }
 
 void gather_leaf_links(ElementHierarchy& h, const LeafLinks& links) {
-  for (std::size_t i = 0; i < h.size(); ++i) h.node(static_cast<NodeId>(i)).gathered = Rgb::Zero();
   auto mean = [&](std::size_t first, std::size_t n) {
     Rgb b = Rgb::Zero();
     for (std::size_t k = first; k < first + n; ++k) b += links.weight[k] * h.node(links.leaf[k]).radiosity;
     return b;
   };
+  if (links.leaf_offsets.size() == h.size() + 1) {
+    // Each side's mean once (index 2 k: pair k's q side, 2 k + 1: its p side), then each leaf adds
+    // its entries' terms in entry order: the additions the sequential loop below makes, in its order.
+    std::vector<Rgb> means(2 * links.pairs.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, links.pairs.size(), 256),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                          const LeafLinks::Pair& e = links.pairs[k];
+                          means[2 * k] = mean(e.q_first, e.q_count);
+                          means[2 * k + 1] = mean(e.p_first, e.p_count);
+                        }
+                      });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, h.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t n = range.begin(); n != range.end(); ++n) {
+        Rgb sum = Rgb::Zero();
+        for (std::uint64_t j = links.leaf_offsets[n]; j < links.leaf_offsets[n + 1]; ++j) {
+          const std::uint32_t i = links.by_leaf[j];
+          sum += links.factor[i] * means[links.other_side[i]];
+        }
+        h.node(static_cast<NodeId>(n)).gathered = sum;
+      }
+    });
+    return;
+  }
+  for (std::size_t i = 0; i < h.size(); ++i) h.node(static_cast<NodeId>(i)).gathered = Rgb::Zero();
   for (const LeafLinks::Pair& e : links.pairs) {
     const Rgb b_q = mean(e.q_first, e.q_count);
     const Rgb b_p = mean(e.p_first, e.p_count);

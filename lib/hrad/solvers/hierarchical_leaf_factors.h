@@ -25,6 +25,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -47,6 +48,12 @@ struct LeafLinks {
   std::vector<NodeId> leaf;    ///< the leaf of each entry
   std::vector<double> factor;  ///< f(leaf -> the other side's node), visible fraction included
   std::vector<double> weight;  ///< A_leaf f / (A_p F(p -> q)): the leaf's share of its side's exchange
+  /// For the parallel gather: the entries grouped by leaf (counting sort by leaf id, entries in
+  /// increasing order within a leaf) and, per entry, which side's mean it gathers (2 k for pair k's
+  /// q side, 2 k + 1 for its p side). 8 bytes per entry plus 8 per node.
+  std::vector<std::uint64_t> leaf_offsets;
+  std::vector<std::uint32_t> by_leaf;
+  std::vector<std::uint32_t> other_side;
   std::size_t size() const { return leaf.size(); }
 };
 
@@ -55,6 +62,8 @@ LeafLinks leaf_links(const ElementHierarchy& hierarchy, std::span<const LinkPair
 
 /// Sets every node's `gathered` to 0, then for every pair adds to each leaf L of one side
 /// f(L -> other) times the weighted mean radiosity of the other side's leaves (all channels).
+/// Parallel (the sides' means over pairs, then each leaf's sum over its entries in entry order):
+/// the same bits as the sequential loop over pairs, at any thread count.
 void gather_leaf_links(ElementHierarchy& hierarchy, const LeafLinks& links);
 
 }  // namespace hrad::detail
