@@ -5,7 +5,7 @@
 // scene is linked from one root self-link and refined top-down (breadth-first; each level decided
 // in parallel, split in order, so the result is the same at any thread count):
 //  * a cluster's self-link becomes the links between its two children and their self-links;
-//  * a pair farther apart than twice the sum of its bounding radii is linked with the far-field
+//  * a pair farther apart than 3 times the sum of its bounding radii is linked with the far-field
 //    transfer (cluster_transfer.h) when its error, estimated as the factor times the change of the
 //    1/r^2 falloff across the two spheres, 2 (r_p + r_q) / r, plus the sampled visibility error,
 //    times the source's a-priori radiosity weight (solve_hierarchical()'s), is within feps; this
