@@ -199,8 +199,8 @@ SolveOptions clustered(SolveOptions o = {}) {
 TEST(ClusteredHierarchical, UniformFurnishedRoomIsEOverOneMinusRho) {
   // One reflectance and emission everywhere in a closed scene: B = E / (1 - rho) exactly; the
   // clustered links (far-field factors, sampled visibility, oriented cluster bins) must keep every
-  // patch close to it. Measured: mean +1.2%, worst patch 7.6% (the undersides of blocks 5 cm above
-  // the floor), where plain HSA's worst is 4.4%.
+  // patch close to it. Measured before the far field was limited to 3x the summed radii: mean
+  // +1.2%, worst patch 7.6% (the undersides of blocks 5 cm above the floor); plain HSA's worst 4.4%.
   const double rho = 0.5;
   const Scene s = furnished_room(8, 3, 6, 1.0, 4, 3, {gray(rho, 1.0), gray(rho, 1.0)});
   Solution sol;
@@ -234,7 +234,7 @@ TEST(ClusteredHierarchical, EnergyBalanceInAClosedColouredFurnishedRoom) {
       emitted += s.patches[i].area * m.emission[c];
       absorbed += s.patches[i].area * (1.0 - m.reflectance[c]) * irradiance;
     }
-    EXPECT_NEAR(absorbed / emitted, 1.0, 0.03) << "channel " << c;  // measured 0.983 .. 0.995
+    EXPECT_NEAR(absorbed / emitted, 1.0, 0.03) << "channel " << c;  // 0.983 .. 0.995 at 2x the radii
   }
 }
 
@@ -257,9 +257,10 @@ TEST(ClusteredHierarchical, SameBitsAtOneAndTwoThreads) {
 }
 
 TEST(ClusteredHierarchical, AgreesWithPlainHsaOnTheCornellBox) {
-  // Default settings; the clustered solve links a few far pairs through clusters and the far-field
-  // transfer, the rest as plain HSA. Every input face within 8% of the brighter of its plain-HSA
-  // radiosity and the mean reflected radiosity (measured: 6.4%), and the total power within 1%.
+  // Default settings; the clustered solve links a few far pairs with the far-field transfer (no
+  // cluster link passes the error test in this small box), the rest as plain HSA. Every input face
+  // within 2% of the brighter of its plain-HSA radiosity and the mean reflected radiosity
+  // (measured: 0.86%), and the total power within 1% (measured 0.007%).
   const Scene s = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
   Solution plain, clustered_sol;
   SolveOptions o;
@@ -281,7 +282,7 @@ TEST(ClusteredHierarchical, AgreesWithPlainHsaOnTheCornellBox) {
     if (s.material_of(s.patches[i]).is_emitter()) continue;
     for (int c = 0; c < 3; ++c) {
       const double ref = plain.patch_radiosity[i][c];
-      EXPECT_NEAR(clustered_sol.patch_radiosity[i][c], ref, 0.08 * std::max(ref, mean_reflected))
+      EXPECT_NEAR(clustered_sol.patch_radiosity[i][c], ref, 0.02 * std::max(ref, mean_reflected))
           << "patch " << i << " (" << s.patches[i].group << ") channel " << c;
     }
   }
