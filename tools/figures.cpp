@@ -232,7 +232,7 @@ void add_figures_command(CLI::App& app) {
       const Scene& scene = scenes.at("cornell_box.obj");
       EqualTimeOptions o;
       o.threads = threads;
-      o.reference_elements = quick ? 64 : 256;
+      o.reference_elements = quick ? 64 : 2048;  // finer than every equal-time run
       o.first_elements = quick ? 16 : 64;
       o.calibration_runs = quick ? 2 : 3;
       if (quick) o.hierarchical.aeps = scene.total_area() * 3e-2;

@@ -482,7 +482,9 @@ PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a
     if (t[0] >= 0) facets.push_back({poly[t[0]], poly[t[1]], poly[t[2]]});
   }
   // Probe segments strictly inside the shaft, near each vertex pair (see probe_segment_hits).
-  auto mean = [](std::span<const Point> p) {
+  // The explicit return type matters: deduced, it would be an Eigen expression referring to a
+  // Vec3 temporary that dies with the call (AddressSanitizer: stack-use-after-scope).
+  auto mean = [](std::span<const Point> p) -> Vec3 {
     double x = 0, y = 0, z = 0;
     for (const Point& q : p) x += q.x(), y += q.y(), z += q.z();
     return Vec3(x, y, z) / double(p.size());
