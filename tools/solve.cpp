@@ -7,7 +7,7 @@
 //                          receive) or hierarchical (HSA 1991 quadtrees and links); default hierarchical
 //   --max-area A           full/substructure: largest element area, scene units^2
 //                          (default: total area / 250)
-//   --patch-area A         substructure: largest shooting-patch area (default: the input polygons)
+//   --patch-area A         substructure: largest shooting-patch area (default: total area / 64; the largest input area keeps the input polygons)
 //   --feps F               hierarchical: form-factor refinement tolerance (default automatic)
 //   --bfeps B              hierarchical: B*F refinement tolerance (radiosity units; default unused)
 //   --aeps A               hierarchical: smallest element area (default automatic)
@@ -61,7 +61,7 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("SCENE", args->scene, "Scene file (.obj)")->required();
   cmd->add_option("--method", args->method, "full | substructure | hierarchical (default hierarchical)");
   cmd->add_option("--max-area", args->max_area, "Full/substructure: largest element area (default total/250)");
-  cmd->add_option("--patch-area", args->patch_area, "Substructure: largest shooting-patch area (default: input polygons)");
+  cmd->add_option("--patch-area", args->patch_area, "Substructure: largest shooting-patch area (default total area / 64)");
   cmd->add_option("--feps", args->feps, "Hierarchical: form-factor tolerance (default automatic)");
   cmd->add_option("--bfeps", args->bfeps, "Hierarchical: B*F tolerance (default unused)");
   cmd->add_option("--aeps", args->aeps, "Hierarchical: smallest element area (default automatic)");

@@ -46,7 +46,7 @@ struct SolveOptions {
   /// Full matrix and substructuring: largest element area (scene units squared); 0 = automatic:
   /// total area / kAutoElements (uniform 1-to-4 splits then give 1 to 4 times that many elements).
   double max_area = 0.0;
-  /// Substructuring: largest shooting-patch area; 0 = the input polygons are the patches.
+  /// Substructuring: largest shooting-patch area; 0 = automatic (kAutoPatchAreaFraction of the total area).
   double patch_area = 0.0;
   /// Hierarchical: form-factor refinement tolerance (HSA 1991 Fε); 0 = unused.
   double feps = 0.0;
