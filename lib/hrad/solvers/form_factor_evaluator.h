@@ -19,13 +19,13 @@ class Visibility;
 /// How the unoccluded factor of a pair is computed.
 enum class FormFactorKernel {
   /// polygon_to_polygon(): the closed-form double contour integral (Schroeder & Hanrahan 1993),
-  /// exact to ~1e-13 and exactly reciprocal; costly (tens of microseconds per pair).
+  /// exact to ~1e-13 and exactly reciprocal; costlier (~5 us for quads in general position, ~1 us for parallel ones: formfactor_benchmark).
   kAnalytic,
   /// Fixed Gauss points on the receiver (3 x 3 on a quad, 12 on a triangle) and
   /// Lambert's exact contour formula from each point to the source (point_to_polygon(); Cohen &
   /// Wallace 1993, eq. 4.16): F(i -> j) = (1/A_i) sum_k w_k F(dA_k -> j). Each point's factors to a
   /// closed surface sum to exactly 1, so rows still sum to 1 in a closed room (closure) and the
-  /// closed forms hold to rounding; reciprocity holds to the quadrature error. ~10x faster.
+  /// closed forms hold to rounding; reciprocity holds to the quadrature error. Several times faster (solvers_benchmark BM_KernelPairs).
   kPointContour,
 };
 
