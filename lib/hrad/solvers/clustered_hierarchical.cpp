@@ -565,10 +565,8 @@ SolveSummary solve_clustered_hierarchical(const Scene& scene, const SolveOptions
   SolverContext ctx(scene, options, Method::kHierarchical);
   ElementHierarchy h(scene);
   const HierarchicalTolerances t = hierarchical_tolerances(scene, options);
+  record_tolerances(t, ctx.summary());
   auto& figures = ctx.summary().figures;
-  figures["feps"] = t.feps;
-  figures["bfeps"] = t.bfeps;
-  figures["aeps"] = t.aeps;
   figures["clustering"] = 1;
   ctx.summary().effects.reasons.push_back(
       "clustering: on (a volume hierarchy above the patches, linked from one root self-link)");

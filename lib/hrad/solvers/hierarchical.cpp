@@ -70,6 +70,12 @@ HierarchicalTolerances hierarchical_tolerances(const Scene& scene, const SolveOp
   return t;
 }
 
+void record_tolerances(const HierarchicalTolerances& t, SolveSummary& summary) {
+  summary.figures["feps"] = t.feps;
+  summary.figures["bfeps"] = t.bfeps;
+  summary.figures["aeps"] = t.aeps;
+}
+
 SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requested, Solution* out) {
   // Always the analytic kernel: HSA's links join elements of very different sizes at coarse levels
   // (a whole floor to a small light), where a fixed receiver quadrature is inaccurate and not
@@ -80,10 +86,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   SolverContext ctx(scene, options, Method::kHierarchical);
   ElementHierarchy h(scene);
   const HierarchicalTolerances t = hierarchical_tolerances(scene, options);
+  record_tolerances(t, ctx.summary());
   auto& figures = ctx.summary().figures;
-  figures["feps"] = t.feps;
-  figures["bfeps"] = t.bfeps;
-  figures["aeps"] = t.aeps;
   ctx.summary().effects.reasons.push_back("kernel: analytic (hierarchical links need exact, reciprocal factors at every size)");
 
   if (!ctx.effects().bounces) {

@@ -80,6 +80,9 @@ struct HierarchicalTolerances {
 /// times the total area when aeps is 0.
 HierarchicalTolerances hierarchical_tolerances(const Scene& scene, const SolveOptions& options);
 
+/// Records `t` in the report's figures "feps", "bfeps" and "aeps" (plain and clustered solves).
+void record_tolerances(const HierarchicalTolerances& t, SolveSummary& summary);
+
 /// Solves `scene` by hierarchical radiosity (options.method is ignored) and writes the leaves to
 /// `out` (if not null). Summary: links counts directed links (each stored interaction is gathered
 /// both ways and counts twice, as the n^2 of the full matrix counts both directions); figures
