@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "hrad/core/error.h"
+#include "hrad/core/rng.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/io/atomic_file.h"
 
@@ -32,23 +33,7 @@ std::vector<Material> generated_materials() {
           m("screen", Rgb(0.05, 0.05, 0.05))};
 }
 
-// splitmix64 (Steele, Lea & Flood 2014): portable, so a seed gives the same scene everywhere
-// (std::uniform_real_distribution is implementation-defined).
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  double uniform(double lo, double hi) { return lo + (hi - lo) * static_cast<double>(next() >> 11) * 0x1p-53; }
-  int below(int n) { return static_cast<int>(next() % static_cast<std::uint64_t>(n)); }
-
- private:
-  std::uint64_t state_;
-};
+using detail::Rng;  // core/rng.h: the same stream on every platform, so a seed gives the same scene
 
 struct Box {
   double x0, x1, y0, y1, z0, z1;  // in the group's frame (x, z about the cell centre)
@@ -127,7 +112,7 @@ std::vector<Box> stack(Rng& rng, int count) {
 
 // A group chosen at random among those that fit in `budget` polygons; empty when none does.
 std::pair<std::string, std::vector<Box>> furniture(Rng& rng, int budget) {
-  const int pick = rng.below(100);
+  const int pick = static_cast<int>(rng.below(100));
   if (pick < 35 && budget >= 72) {
     const bool monitor = rng.below(2) == 0;
     std::vector<Box> parts = table(monitor, -0.25);
@@ -137,7 +122,7 @@ std::pair<std::string, std::vector<Box>> furniture(Rng& rng, int budget) {
   if (pick < 50 && budget >= 36) return {"table", table(true, 0.0)};
   if (pick < 75 && budget >= 6 && budget < 30) return {"boxes", stack(rng, std::min(5, budget / 6))};
   if (pick < 75 && budget >= 6) return {"cabinet", cabinet(rng)};
-  if (budget >= 6) return {"boxes", stack(rng, std::min(budget / 6, 2 + rng.below(4)))};
+  if (budget >= 6) return {"boxes", stack(rng, std::min(budget / 6, 2 + static_cast<int>(rng.below(4))))};
   return {};
 }
 
@@ -199,7 +184,7 @@ GeneratedScene generate_scene(const SceneGeneratorOptions& options) {
   // Furniture: one group per cell, cells in a random order, until the budget is spent.
   std::vector<int> order(static_cast<std::size_t>(nx * nz));
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[static_cast<std::size_t>(rng.below(static_cast<int>(i)))]);
+  for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[static_cast<std::size_t>(rng.below(i))]);
   int objects = 0;
   auto budget = [&] { return n - static_cast<int>(s.faces.size()); };
   for (const int cell : order) {

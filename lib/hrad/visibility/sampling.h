@@ -6,28 +6,10 @@
 #include <span>
 #include <vector>
 
+#include "hrad/core/rng.h"
 #include "hrad/core/types.h"
 
 namespace hrad::detail {
-
-/// SplitMix64 (Steele, Lea & Flood 2014): small, fast, and the same stream on every platform.
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
-  /// Uniform in [0, 1), 53 random bits.
-  double uniform() { return double(next() >> 11) * 0x1.0p-53; }
-  /// Uniform in [0, n).
-  std::uint64_t below(std::uint64_t n) { return next() % n; }
-
- private:
-  std::uint64_t state_;
-};
 
 /// Maps the unit square onto a convex planar polygon, uniformly by area: u picks a triangle of
 /// the fan from vertex 0 (by area) and both coordinates are remapped into it with the
