@@ -30,6 +30,7 @@
 
 #include <fmt/format.h>
 
+#include "comma_numbers.h"
 #include "commands.h"
 #include "hrad/core/error.h"
 #include "hrad/analysis/error_metrics.h"
@@ -45,20 +46,9 @@ namespace {
 
 Camera parse_camera(const std::string& text, int width, int height) {
   const std::string usage = "--camera: expected 10 comma-separated numbers px,py,pz,tx,ty,tz,ux,uy,uz,fov_deg";
-  std::vector<double> v;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    std::size_t used = 0;
-    double x = 0.0;
-    try {
-      x = std::stod(item, &used);
-    } catch (const std::exception&) {
-      throw Error(fmt::format("{}, got '{}'", usage, text));
-    }
-    if (used != item.size() || !std::isfinite(x)) throw Error(fmt::format("{}, got '{}'", usage, text));
-    v.push_back(x);
-  }
+  const std::optional<std::vector<double>> numbers = comma_numbers(text);
+  if (!numbers) throw Error(fmt::format("{}, got '{}'", usage, text));
+  const std::vector<double>& v = *numbers;
   if (v.size() != 10) throw Error(fmt::format("{}, got {} in '{}'", usage, v.size(), text));
   Camera c;
   c.position = Vec3(v[0], v[1], v[2]);
@@ -78,18 +68,10 @@ Camera parse_camera(const std::string& text, int width, int height) {
 
 std::pair<double, double> parse_range(const std::string& text) {
   const std::string usage = "--error-range: expected LO,HI with 0 <= LO < HI";
-  const std::size_t comma = text.find(',');
-  if (comma == std::string::npos) throw Error(fmt::format("{}, got '{}'", usage, text));
-  double lo = 0.0, hi = 0.0;
-  try {
-    std::size_t used_lo = 0, used_hi = 0;
-    lo = std::stod(text.substr(0, comma), &used_lo);
-    hi = std::stod(text.substr(comma + 1), &used_hi);
-    if (used_lo != comma || used_hi != text.size() - comma - 1) throw std::invalid_argument("trailing");
-  } catch (const std::exception&) {
-    throw Error(fmt::format("{}, got '{}'", usage, text));
-  }
-  if (!(lo >= 0.0 && hi > lo && std::isfinite(hi))) throw Error(fmt::format("{}, got '{}'", usage, text));
+  const std::optional<std::vector<double>> v = comma_numbers(text);
+  if (!v || v->size() != 2) throw Error(fmt::format("{}, got '{}'", usage, text));
+  const double lo = (*v)[0], hi = (*v)[1];
+  if (!(lo >= 0.0 && hi > lo)) throw Error(fmt::format("{}, got '{}'", usage, text));
   return {lo, hi};
 }
 

@@ -15,6 +15,7 @@
 //   DIR/pareto.png      error against time, log-log, the three methods
 //   DIR/command.txt     the command that made them
 // --quick runs 3 small settings per parameter (for tests). Progress goes to stderr.
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -22,6 +23,7 @@
 
 #include <fmt/format.h>
 
+#include "comma_numbers.h"
 #include "commands.h"
 #include "hrad/core/error.h"
 #include "hrad/experiments/sweep.h"
@@ -36,23 +38,12 @@ namespace {
 
 // "a,b,c" as numbers in [lo, hi]; empty text gives an empty list (the default settings).
 std::vector<double> parse_list(const std::string& option, const std::string& text, double lo, double hi) {
-  std::vector<double> values;
-  if (text.empty()) return values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    double x = 0.0;
-    std::size_t used = 0;
-    try {
-      x = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size() || !(x >= lo && x <= hi))
-      throw Error(fmt::format("{}: expected comma-separated numbers in [{:g}, {:g}], got '{}'", option, lo, hi, text));
-    values.push_back(x);
-  }
-  return values;
+  if (text.empty()) return {};
+  const std::optional<std::vector<double>> values = comma_numbers(text);
+  const auto outside = [&](double x) { return !(x >= lo && x <= hi); };
+  if (!values || std::any_of(values->begin(), values->end(), outside))
+    throw Error(fmt::format("{}: expected comma-separated numbers in [{:g}, {:g}], got '{}'", option, lo, hi, text));
+  return *values;
 }
 
 }  // namespace
