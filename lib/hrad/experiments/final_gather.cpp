@@ -31,8 +31,7 @@ double weighted_fraction(const Visibility& visibility, const Vec3& x, const Vec3
   for (const Vec2& u : uv) {
     const Vec3 y = sampler.point(u.x(), u.y());
     const Vec3 d = y - x;
-    const double r2 = d.squaredNorm();
-    const double k = r2 > 0.0 ? std::max(0.0, nx.dot(d)) * std::max(0.0, -ny.dot(d)) / (r2 * r2) : 0.0;
+    const double k = detail::point_pair_kernel(nx, ny, d);
     const bool open = !visibility.segment_blocked(x, patch_x, y, leaf_patch);
     weight += k;
     visible += open ? k : 0.0;

@@ -165,8 +165,7 @@ std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<con
     for (const Vec2& b : uy) {
       const Vec3 y = sy.point(b.x(), b.y());
       const Vec3 d = y - x;
-      const double r2 = d.squaredNorm();
-      const double k = r2 > 0.0 ? std::max(0.0, nx.dot(d)) * std::max(0.0, -ny.dot(d)) / (r2 * r2) : 0.0;
+      const double k = detail::point_pair_kernel(nx, ny, d);
       const bool seen = !visibility_->segment_blocked(x, receiver_patch, y, source_patch);
       weight += k;
       visible_weight += seen ? k : 0.0;

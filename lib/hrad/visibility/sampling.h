@@ -2,6 +2,7 @@
 // estimators. No CGAL here.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -38,6 +39,14 @@ void stratified_unit_square(int n, Rng& rng, std::vector<Vec2>* out);
 double fraction_error(int visible, int n);
 
 /// Deterministic seed for one sampled query from the caller's seed and a stream index.
+/// The point-to-point form-factor kernel without its 1/pi, cos(theta_x) cos(theta_y) / r^2 =
+/// (n_x . d)(-n_y . d) / r^4 for d = y - x and unit normals, 0 when either point is behind the
+/// other: the weight of kernel-weighted visibility (Wallace, Elmquist & Haines 1989).
+inline double point_pair_kernel(const Vec3& nx, const Vec3& ny, const Vec3& d) {
+  const double r2 = d.squaredNorm();
+  return r2 > 0.0 ? std::max(0.0, nx.dot(d)) * std::max(0.0, -ny.dot(d)) / (r2 * r2) : 0.0;
+}
+
 inline std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t stream) {
   Rng r(seed ^ (stream * 0xd1b54a32d192ed03ULL));
   return r.next();
