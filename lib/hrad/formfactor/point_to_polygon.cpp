@@ -43,11 +43,13 @@ struct LambertSum {
   double magnitude;  // sum of |terms| / (2 pi)
 };
 
-// Sum over the closed contour; `r` are the vertices relative to x.
-LambertSum lambert_sum(std::span<const Vec3> r, const Vec3& n) {
+// Sum over the closed contour; `r` are the vertices relative to x. K > 0 fixes the vertex count at
+// compile time (the quad's loop is then unrolled), K = 0 takes r.size().
+template <std::size_t K = 0>
+inline LambertSum lambert_sum(std::span<const Vec3> r, const Vec3& n) {
   constexpr double kInv2Pi = 0.5 / std::numbers::pi;
   double sum = 0.0, magnitude = 0.0;
-  const std::size_t k = r.size();
+  const std::size_t k = K == 0 ? r.size() : K;
   for (std::size_t i = 0; i < k; ++i) {
     const Vec3& a = r[i];
     const Vec3& b = r[i + 1 == k ? 0 : i + 1];
@@ -92,32 +94,40 @@ struct Refinement {
   }
 };
 
-double evaluate(std::span<const Vec3> r, const Vec3& n, const Vec3& normal, double rel_tol) {
-  const LambertSum s = lambert_sum(r, n);
-  if (rel_tol == kLambertSumOnly || kEps * s.magnitude <= rel_tol * s.value) return std::max(0.0, s.value);
-  Refinement refinement{n, normal.normalized(), rel_tol};
+// The refinement of a sum that cancels (see the file comment): rare, so kept out of line. `pieces`
+// is the polygon to refine, `relative` the whole polygon (relative to x), whose Newell normal
+// orients the pieces.
+[[gnu::noinline]] double refined_sum(std::span<const Vec3> pieces, std::span<const Vec3> relative, const Vec3& n,
+                                     double rel_tol) {
+  Refinement refinement{n, newell_normal(relative).normalized(), rel_tol};
   double sum = 0.0;
-  for (const auto& t : detail::triangle_pieces(r, refinement.normal)) sum += refinement.refine(t);
+  for (const auto& t : detail::triangle_pieces(pieces, refinement.normal)) sum += refinement.refine(t);
   return sum;
 }
 
-}  // namespace
+// The Lambert sum of `r` (the polygon `relative`, or its part in front of the tangent plane), refined
+// if it cancels beyond rel_tol.
+template <std::size_t K = 0>
+inline double evaluate(std::span<const Vec3> r, std::span<const Vec3> relative, const Vec3& n, double rel_tol) {
+  const LambertSum s = lambert_sum<K>(r, n);
+  if (rel_tol == kLambertSumOnly || kEps * s.magnitude <= rel_tol * s.value) return std::max(0.0, s.value);
+  return refined_sum(r, relative, n, rel_tol);
+}
 
-double point_to_polygon(const Vec3& x, const Vec3& n, std::span<const Vec3> polygon, double rel_tol) {
-  const std::size_t k = polygon.size();
-  if (k < 3) return 0.0;
-  std::array<Vec3, kStackVertices> r_stack;
-  std::array<double, kStackVertices> height_stack;
-  thread_local std::vector<Vec3> r_heap, clipped;
-  thread_local std::vector<double> height_heap;
-  Vec3* r = r_stack.data();
-  double* height = height_stack.data();
-  if (k > kStackVertices) {
-    r_heap.resize(k);
-    height_heap.resize(k);
-    r = r_heap.data();
-    height = height_heap.data();
-  }
+[[gnu::noinline]] double clipped_sum(std::span<const Vec3> relative, std::span<const double> height, const Vec3& n,
+                                     double rel_tol) {
+  thread_local std::vector<Vec3> clipped;
+  detail::clip_to_half_space(relative, height, clipped);
+  if (clipped.size() < 3) return 0.0;
+  return evaluate(clipped, relative, n, rel_tol);
+}
+
+// point_to_polygon() with the relative vertices and their heights above the tangent plane in
+// `r` and `height` (k of each); K as in lambert_sum().
+template <std::size_t K = 0>
+inline double point_to_polygon(const Vec3& x, const Vec3& n, std::span<const Vec3> polygon, double rel_tol, Vec3* r,
+                               double* height) {
+  const std::size_t k = K == 0 ? polygon.size() : K;
   bool any_above = false, any_below = false;
   std::size_t nearest = 0;
   double nearest_d2 = INFINITY;
@@ -131,13 +141,35 @@ double point_to_polygon(const Vec3& x, const Vec3& n, std::span<const Vec3> poly
   }
   if (!any_above) return 0.0;  // behind or in the tangent plane
   const std::span<const Vec3> relative(r, k);
+  // Newell's normal. For a quad, newell_normal()'s fan from r[0], (r1-r0)x(r2-r0) + (r2-r0)x(r3-r0),
+  // is (r2-r0)x(r3-r1): the diagonals' cross product, without the call.
+  const Vec3 normal = K == 4 ? Vec3((r[2] - r[0]).cross(r[3] - r[1])) : newell_normal(relative);
   // x must be strictly in front of the polygon (its plane evaluated at the vertex nearest x).
-  const Vec3 normal = newell_normal(relative);
   if (!(normal.dot(r[nearest]) < 0.0)) return 0.0;
-  if (!any_below) return evaluate(relative, n, normal, rel_tol);
-  detail::clip_to_half_space(relative, std::span<const double>(height, k), clipped);
-  if (clipped.size() < 3) return 0.0;
-  return evaluate(clipped, n, normal, rel_tol);
+  if (any_below) return clipped_sum(relative, std::span<const double>(height, k), n, rel_tol);
+  return evaluate<K>(relative, relative, n, rel_tol);
+}
+
+[[gnu::noinline]] double point_to_large_polygon(const Vec3& x, const Vec3& n, std::span<const Vec3> polygon,
+                                                double rel_tol) {
+  thread_local std::vector<Vec3> r;
+  thread_local std::vector<double> height;
+  r.resize(polygon.size());
+  height.resize(polygon.size());
+  return point_to_polygon(x, n, polygon, rel_tol, r.data(), height.data());
+}
+
+}  // namespace
+
+double point_to_polygon(const Vec3& x, const Vec3& n, std::span<const Vec3> polygon, double rel_tol) {
+  const std::size_t k = polygon.size();
+  if (k < 3) return 0.0;
+  if (k > kStackVertices) return point_to_large_polygon(x, n, polygon, rel_tol);
+  // The relative vertices live on the stack; a quad has its own unrolled copy of the code.
+  std::array<Vec3, kStackVertices> r;
+  std::array<double, kStackVertices> height;
+  if (k == 4) return point_to_polygon<4>(x, n, polygon, rel_tol, r.data(), height.data());
+  return point_to_polygon(x, n, polygon, rel_tol, r.data(), height.data());
 }
 
 }  // namespace hrad
