@@ -50,6 +50,7 @@ inline LambertSum lambert_sum(std::span<const Vec3> r, const Vec3& n) {
   constexpr double kInv2Pi = 0.5 / std::numbers::pi;
   double sum = 0.0, magnitude = 0.0;
   const std::size_t k = K == 0 ? r.size() : K;
+#pragma GCC unroll 4
   for (std::size_t i = 0; i < k; ++i) {
     const Vec3& a = r[i];
     const Vec3& b = r[i + 1 == k ? 0 : i + 1];
@@ -136,8 +137,11 @@ inline double point_to_polygon(const Vec3& x, const Vec3& n, std::span<const Vec
     height[i] = n.dot(r[i]);
     any_above |= height[i] > 0.0;
     any_below |= height[i] < 0.0;
+    // A selection, not a branch: which vertex is nearest is unpredictable.
     const double d2 = r[i].squaredNorm();
-    if (d2 < nearest_d2) nearest_d2 = d2, nearest = i;
+    const bool nearer = d2 < nearest_d2;
+    nearest = nearer ? i : nearest;
+    nearest_d2 = nearer ? d2 : nearest_d2;
   }
   if (!any_above) return 0.0;  // behind or in the tangent plane
   const std::span<const Vec3> relative(r, k);
