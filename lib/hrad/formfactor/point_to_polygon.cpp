@@ -75,6 +75,9 @@ struct Refinement {
   int pieces = 0;
 
   double refine(const detail::TrianglePiece& t) {
+    // A piece of zero area (from a repeated vertex) subtends no solid angle; its Lambert sum is 0 and
+    // would never pass the test below, spending the whole piece budget.
+    if (t.area == 0.0) return 0.0;
     ++pieces;
     const int order = detail::far_field_order(t.centre.norm(), 0.0, t.radius);
     if (order > 0) {
