@@ -170,6 +170,28 @@ TEST(FormFactorProperties, ScalesFrom1e8To1e8) {
   }
 }
 
+TEST(FormFactorProperties, ALooserToleranceIsKept) {
+  // polygon_to_polygon(.., rel_tol): the solvers ask for 1e-9. On random pairs from touching-close
+  // to 1e4 sizes apart, the value stays within rel_tol of the default's and reciprocity is exact.
+  std::mt19937_64 rng(707);
+  int visible = 0;
+  std::uniform_real_distribution<double> logd(-0.5, 4.0);
+  for (int i = 0; i < 200; ++i) {
+    const Polygon from = random_convex(rng, 3 + i % 4, 1.0, 0.5);
+    const Eigen::Matrix3d r = random_rotation(rng);
+    Polygon to = moved(reversed(random_convex(rng, 3 + (i / 4) % 4, 0.8, 1.0)), r, Vec3::Zero());
+    to = moved(to, Eigen::Matrix3d::Identity(), Vec3(0.2, -0.1, std::pow(10.0, logd(rng))));
+    const PairFormFactor exact = polygon_to_polygon(from, to);
+    visible += exact.from_to > 0.0;
+    for (const double tol : {1e-9, 1e-6}) {
+      const PairFormFactor f = polygon_to_polygon(from, to, tol);
+      EXPECT_NEAR(f.from_to, exact.from_to, tol * exact.from_to + 1e-300) << i << " tol " << tol;
+      EXPECT_NEAR(polygon_area(from) * f.from_to, polygon_area(to) * f.to_from, 4e-16 * polygon_area(from) * f.from_to);
+    }
+  }
+  EXPECT_GE(visible, 50);  // most pairs must see each other for the test to mean something
+}
+
 }  // namespace
 }  // namespace hrad::test
 

@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/analysis/error_metrics.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/io/obj_reader.h"
@@ -149,16 +148,6 @@ TEST(Hierarchical, LeafFactorsSumToOneInAClosedRoom) {
   double worst = 0.0;
   for (const NodeId leaf : h.all_leaves()) worst = std::max(worst, std::abs(row[static_cast<std::size_t>(leaf)] - 1.0));
   EXPECT_LT(worst, 1e-3);
-}
-
-TEST(Hierarchical, LeafFormFactorMatchesTheClosedForm) {
-  // Howell's catalog C-11: parallel unit squares 1 apart, F = 0.19982; and a right triangle (half
-  // of the square) against the analytic kernel.
-  const std::vector<Vec3> a = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-  const std::vector<Vec3> b = {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}};  // faces -z
-  EXPECT_NEAR(detail::leaf_form_factor(a, b), 0.19982, 2e-4);
-  const std::vector<Vec3> t = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};
-  EXPECT_NEAR(detail::leaf_form_factor(t, b), polygon_to_polygon(t, b).from_to, 1e-3);
 }
 
 TEST(Hierarchical, OracleRefinesALargeElementNearASmallOneThoughTheAverageFactorIsSmall) {

@@ -8,13 +8,13 @@
 
 namespace hrad::detail {
 
-int far_field_order(double distance, double radius_from, double radius_to) {
+int far_field_order(double distance, double radius_from, double radius_to, double rel_tol) {
   const double radius = std::max(radius_from, radius_to);
   const double gap = distance - radius_from - radius_to;
   if (!(gap > 0.0)) return 0;
   const double d = (gap + radius) / radius;  // nearest singularity, in panel half-widths
   const double rho = d + std::sqrt(d * d + 1.0);
-  const int order = static_cast<int>(std::ceil(18.5 / std::log(rho)));
+  const int order = static_cast<int>(std::ceil(0.5 * std::log(1.0 / rel_tol) / std::log(rho)));
   return order <= kMaxFarOrder ? std::max(order, 2) : 0;
 }
 

@@ -11,7 +11,7 @@
 // The contour sum cancels when the factor is small against the edge terms: pairs far apart
 // (~1e-12 relative at distance/size 10, ~1e-8 at 1000), pairs of very different size, long slivers.
 // The contour sum is tried first (it is the fast path); when its bound says it is not accurate to
-// kAcceptTolerance:
+// rel_tol (kPolygonToPolygonTolerance by default):
 // * a pair far apart relative to its size is integrated directly by product Gauss quadrature of the
 //   area-area kernel (far_field_form_factor.cpp), which does not cancel at all;
 // * otherwise both polygons are triangulated and the larger triangle of a piece pair is bisected
@@ -40,8 +40,10 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 // The rounding error of a contour sum is below eps * magnitude (measured on Howell's C-11 and C-14
 // over aspect ratios 1e-4..1e4 and distances 1e-3..1e3: actual/bound between 0.003 and 0.3).
-constexpr double kAcceptTolerance = 1e-11;
-constexpr double kPieceTolerance = 1e-12;
+// A pair's sum is accepted within rel_tol, a piece's within rel_tol / 10; a Gauss rule is asked for
+// rel_tol * kFarMargin (at the default, full precision as before).
+constexpr double kPieceMargin = 0.1;
+constexpr double kFarMargin = detail::kFarFieldFullPrecision / kPolygonToPolygonTolerance;
 constexpr std::size_t kMaxPieces = 1500;  // bounds the worst case (~0.1 s)
 // Touching pieces are split only when one is this much larger than the other.
 constexpr double kSizeRatio = 4.0;
@@ -52,11 +54,12 @@ using detail::bisect;
 // Dual bisection of piece pairs (see the file comment).
 struct Refinement {
   Vec3 from_normal, to_normal;
+  double rel_tol;
   std::size_t pieces = 0;
 
   double refine(const Triangle& a, const Triangle& b) {
     ++pieces;
-    const int order = detail::far_field_order((a.centre - b.centre).norm(), a.radius, b.radius);
+    const int order = detail::far_field_order((a.centre - b.centre).norm(), a.radius, b.radius, rel_tol * kFarMargin);
     if (order > 0)
       return detail::far_field_area_factor(a.v[0], a.v[1], a.v[2], from_normal, b.v[0], b.v[1], b.v[2], to_normal,
                                            order);
@@ -69,7 +72,7 @@ struct Refinement {
     const double value = std::max(0.0, sum.area_factor) * s * s;
     const double bound = kEps * sum.magnitude;
     // Below the floor the piece's factor is noise against its own area, whatever the total.
-    if (bound <= std::max(kPieceTolerance * sum.area_factor, 1e-15 * std::min(a.area, b.area) / (s * s)) ||
+    if (bound <= std::max(kPieceMargin * rel_tol * sum.area_factor, 1e-15 * std::min(a.area, b.area) / (s * s)) ||
         pieces >= kMaxPieces)
       return value;
     const double ratio = std::max(a.radius, b.radius) / std::min(a.radius, b.radius);
@@ -101,19 +104,19 @@ void centre_and_radius(std::span<const Vec3> p, Vec3* centre, double* radius) {
 
 }  // namespace
 
-PairFormFactor polygon_to_polygon(std::span<const Vec3> from, std::span<const Vec3> to) {
+PairFormFactor polygon_to_polygon(std::span<const Vec3> from, std::span<const Vec3> to, double rel_tol) {
   const detail::PreparedPair pair = detail::prepare_pair(from, to);
   if (!pair.visible) return {};
-  Refinement refinement{pair.from_normal, pair.to_normal};
+  Refinement refinement{pair.from_normal, pair.to_normal, rel_tol};
   Vec3 cf, ct;
   double rf, rt;
   centre_and_radius(pair.from, &cf, &rf);
   centre_and_radius(pair.to, &ct, &rt);
   const detail::ContourSum sum = detail::contour_area_factor(pair.from, pair.to);
   double area_factor = sum.area_factor;
-  const bool accurate = kEps * sum.magnitude <= kAcceptTolerance * sum.area_factor;
+  const bool accurate = kEps * sum.magnitude <= rel_tol * sum.area_factor;
   if (!accurate) {
-    const bool far = detail::far_field_order((cf - ct).norm(), rf, rt) > 0;
+    const bool far = detail::far_field_order((cf - ct).norm(), rf, rt, rel_tol * kFarMargin) > 0;
     const bool touching_alike =
         !far && std::max(rf, rt) < kSizeRatio * std::min(rf, rt) &&
         detail::polygon_distance(pair.from, pair.from_normal, pair.to, pair.to_normal) == 0.0;

@@ -7,6 +7,10 @@
 
 namespace hrad {
 
+/// The default accuracy of polygon_to_polygon(): a contour sum is accepted when its rounding bound
+/// is within this of the result, otherwise the pair is refined (see the .cpp).
+inline constexpr double kPolygonToPolygonTolerance = 1e-11;
+
 /// Both directions of one evaluation; area(from) * from_to == area(to) * to_from to rounding.
 struct PairFormFactor {
   double from_to = 0.0;
@@ -18,6 +22,12 @@ struct PairFormFactor {
 /// facing away or coplanar gives exactly 0. Singular configurations (shared edges and vertices,
 /// collinear and parallel edges, touching polygons) are handled by their exact limits; far-apart
 /// pairs switch to quadrature where the closed form would cancel. Unit-independent.
-PairFormFactor polygon_to_polygon(std::span<const Vec3> from, std::span<const Vec3> to);
+///
+/// `rel_tol` is the relative accuracy asked for (default kPolygonToPolygonTolerance, ~1e-11 and
+/// better: the tests hold it to Howell's closed forms). A solver that needs less (its
+/// discretisation error is many orders larger) passes a looser one: far pairs then take lower
+/// Gauss orders and closer pairs keep their contour sum (FormFactorEvaluator uses 1e-9).
+PairFormFactor polygon_to_polygon(std::span<const Vec3> from, std::span<const Vec3> to,
+                                  double rel_tol = kPolygonToPolygonTolerance);
 
 }  // namespace hrad

@@ -6,10 +6,8 @@
 #include <vector>
 #include <cassert>
 
-#include "hrad/formfactor/gauss_legendre.h"
-#include "hrad/formfactor/polygon_quadrature.h"
-#include "hrad/formfactor/point_to_polygon.h"
 #include "hrad/formfactor/polygon_to_polygon.h"
+#include "hrad/formfactor/receiver_gauss_factor.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/visibility/sampling.h"
 #include "hrad/visibility/visibility.h"
@@ -49,44 +47,6 @@ std::uint64_t pair_seed(const Scene& scene, std::span<const Vec3> a, int pa, std
   return h;
 }
 
-
-// Gauss points on an element, the same for every source so that each point's factors to a closed
-// surface sum to 1 and so do the element's (closure, exact to rounding): a quad gets the 3 x 3
-// product Gauss rule on its bilinear map, a triangle the collapsed rule of order 2 (12 points).
-void receiver_points(std::span<const Vec3> p, const Vec3& n, std::vector<detail::WeightedPoint>& out) {
-  out.clear();
-  if (p.size() != 4) {
-    detail::polygon_quadrature(p, n, 2, out);
-    return;
-  }
-  const detail::GaussRule g = detail::gauss_legendre(3);
-  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
-    const double u = 0.5 * (g.nodes[i] + 1.0);
-    for (std::size_t j = 0; j < g.nodes.size(); ++j) {
-      const double v = 0.5 * (g.nodes[j] + 1.0);
-      const Vec3 x = (1 - u) * (1 - v) * p[0] + u * (1 - v) * p[1] + u * v * p[2] + (1 - u) * v * p[3];
-      const Vec3 du = (1 - v) * (p[1] - p[0]) + v * (p[2] - p[3]);
-      const Vec3 dv = (1 - u) * (p[3] - p[0]) + u * (p[2] - p[1]);
-      out.push_back({x, 0.25 * g.weights[i] * g.weights[j] * du.cross(dv).norm()});
-    }
-  }
-}
-
-// (1/A) sum_k w_k F(dA_k -> source): fixed Gauss points on `receiver`, Lambert's contour formula to
-// `source` (point_to_polygon; Cohen & Wallace 1993, eq. 4.16). The plain contour sum, unrefined: a
-// solver needs far less than point_to_polygon's 1e-13 where the sum cancels, and the plain sum
-// keeps each point's factors to a closed surface summing to 1 to rounding.
-double contour_factor(std::span<const Vec3> receiver, std::span<const Vec3> source) {
-  thread_local std::vector<detail::WeightedPoint> points;
-  const Vec3 n = newell_normal(receiver).normalized();
-  receiver_points(receiver, n, points);
-  double sum = 0.0, area = 0.0;
-  for (const detail::WeightedPoint& p : points) {
-    sum += p.weight * point_to_polygon(p.x, n, source, kLambertSumOnly);
-    area += p.weight;  // the weights' own sum, so that factors to a closed surface sum to 1 exactly
-  }
-  return area > 0.0 ? std::max(0.0, sum / area) : 0.0;
-}
 
 }  // namespace
 
@@ -180,8 +140,8 @@ std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<con
 
 PairFormFactor FormFactorEvaluator::unoccluded(std::span<const Vec3> receiver, std::span<const Vec3> source) const {
   evaluations_.fetch_add(1, std::memory_order_relaxed);
-  if (kernel_ == FormFactorKernel::kAnalytic) return polygon_to_polygon(receiver, source);
-  return {contour_factor(receiver, source), contour_factor(source, receiver)};
+  if (kernel_ == FormFactorKernel::kAnalytic) return polygon_to_polygon(receiver, source, kSolverPairTolerance);
+  return {receiver_gauss_factor(receiver, source), receiver_gauss_factor(source, receiver)};
 }
 
 }  // namespace hrad

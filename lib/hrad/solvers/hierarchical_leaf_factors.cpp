@@ -6,45 +6,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "hrad/formfactor/point_to_polygon.h"
+#include "hrad/formfactor/receiver_gauss_factor.h"
 #include "hrad/geometry/polygon.h"
 
 namespace hrad::detail {
-
-double leaf_form_factor(std::span<const Vec3> element, std::span<const Vec3> source) {
-  const Vec3 n = newell_normal(element).normalized();
-  double sum = 0.0, weights = 0.0;
-  if (element.size() == 4) {
-    // 3 x 3 Gauss-Legendre on the bilinear map of [0,1]^2 onto the quad, weighted by its Jacobian
-    // (degree 5 in (u, v); the weights sum to the area exactly).
-    const double g = 0.5 * std::sqrt(0.6);
-    const std::array<double, 3> t = {0.5 - g, 0.5, 0.5 + g};
-    const std::array<double, 3> tw = {5.0, 8.0, 5.0};
-    const Vec3 &a = element[0], &b = element[1], &c = element[2], &d = element[3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        const double u = t[i], v = t[j];
-        const Vec3 x = (1 - u) * (1 - v) * a + u * (1 - v) * b + u * v * c + (1 - u) * v * d;
-        const Vec3 du = (1 - v) * (b - a) + v * (c - d);
-        const Vec3 dv = (1 - u) * (d - a) + u * (c - b);
-        const double w = tw[i] * tw[j] * du.cross(dv).norm();
-        sum += w * point_to_polygon(x, n, source);
-        weights += w;
-      }
-  } else {
-    // Dunavant's 6-point rule (degree 4; Dunavant 1985, "High degree efficient symmetrical
-    // Gaussian quadrature rules for the triangle", table for p = 4).
-    const std::array<std::array<double, 2>, 2> rule = {{{0.445948490915965, 0.223381589678011},
-                                                       {0.091576213509771, 0.109951743655322}}};
-    for (const auto& [a, w] : rule)
-      for (int k = 0; k < 3; ++k) {
-        const Vec3 x = (1.0 - 2.0 * a) * element[k] + a * (element[(k + 1) % 3] + element[(k + 2) % 3]);
-        sum += w * point_to_polygon(x, n, source);
-        weights += w;
-      }
-  }
-  return sum / weights;
-}
 
 LeafLinks leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs) {
   LeafLinks out;
@@ -83,7 +48,7 @@ LeafLinks leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs)
     double weighted = 0.0;
     for (std::size_t k = 0; k < l.size(); ++k) {
       const ElementNode& leaf = h.node(l[k]);
-      const double f = leaf_form_factor(leaf.polygon(), source);
+      const double f = receiver_gauss_factor(leaf.polygon(), source);
       out.leaf[first + k] = l[k];
       out.factor[first + k] = f;
       weighted += leaf.area * f;

@@ -12,9 +12,8 @@
 //
 // Here each link (p, q) keeps its level, its visible fraction and its total exchange
 // A_p F(p -> q) = A_q F(q -> p), but is resolved on both sides to the leaves below p and q with
-// the leaves' own unoccluded factors f(L -> q), f(M -> p) (a Gauss rule on the leaf, 3 x 3 on a
-// quad and Dunavant's 6 points on a triangle, with Lambert's point-to-polygon formula at each
-// point), scaled so that sum_L A_L f(L -> q) = A_p F(p -> q) exactly. The link's leaf-to-leaf
+// the leaves' own unoccluded factors f(L -> q), f(M -> p) (receiver_gauss_factor(): Gauss points
+// on the leaf, Lambert's point-to-polygon formula at each), scaled so that sum_L A_L f(L -> q) = A_p F(p -> q) exactly. The link's leaf-to-leaf
 // block is approximated by the separable K(L, M) = f(L -> q) w_M, w_M = A_M f(M -> p) /
 // (A_q F(q -> p)): leaf L gathers f(L -> q) times the w-weighted mean of q's leaves. Its rows sum
 // to f(L -> q) (closure: a leaf's factors to sources tiling a closed room sum to 1 up to the
@@ -33,10 +32,6 @@
 #include "hrad/solvers/hierarchical_refine.h"
 
 namespace hrad::detail {
-
-/// F(element -> source) averaged over `element` with the Gauss rule above (unoccluded; the
-/// element's normal from its vertex order).
-double leaf_form_factor(std::span<const Vec3> element, std::span<const Vec3> source);
 
 /// The link pairs resolved to leaves. Pair k's p side is entries [pairs[k].p_first, + p_count),
 /// its q side [q_first, + q_count).

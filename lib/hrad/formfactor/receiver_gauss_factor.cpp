@@ -1,0 +1,41 @@
+#include "hrad/formfactor/receiver_gauss_factor.h"
+
+#include <algorithm>
+
+#include "hrad/formfactor/gauss_legendre.h"
+#include "hrad/geometry/polygon.h"
+
+namespace hrad {
+
+void receiver_gauss_points(std::span<const Vec3> p, const Vec3& n, std::vector<detail::WeightedPoint>& out) {
+  out.clear();
+  if (p.size() != 4) {
+    detail::polygon_quadrature(p, n, 2, out);
+    return;
+  }
+  const detail::GaussRule g = detail::gauss_legendre(3);
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    const double u = 0.5 * (g.nodes[i] + 1.0);
+    for (std::size_t j = 0; j < g.nodes.size(); ++j) {
+      const double v = 0.5 * (g.nodes[j] + 1.0);
+      const Vec3 x = (1 - u) * (1 - v) * p[0] + u * (1 - v) * p[1] + u * v * p[2] + (1 - u) * v * p[3];
+      const Vec3 du = (1 - v) * (p[1] - p[0]) + v * (p[2] - p[3]);
+      const Vec3 dv = (1 - u) * (p[3] - p[0]) + u * (p[2] - p[1]);
+      out.push_back({x, 0.25 * g.weights[i] * g.weights[j] * du.cross(dv).norm()});
+    }
+  }
+}
+
+double receiver_gauss_factor(std::span<const Vec3> receiver, std::span<const Vec3> source, double rel_tol) {
+  thread_local std::vector<detail::WeightedPoint> points;
+  const Vec3 n = newell_normal(receiver).normalized();
+  receiver_gauss_points(receiver, n, points);
+  double sum = 0.0, area = 0.0;
+  for (const detail::WeightedPoint& p : points) {
+    sum += p.weight * point_to_polygon(p.x, n, source, rel_tol);
+    area += p.weight;  // the weights' own sum, so that factors to a closed surface sum to 1 exactly
+  }
+  return area > 0.0 ? std::max(0.0, sum / area) : 0.0;
+}
+
+}  // namespace hrad

@@ -1,0 +1,30 @@
+// Element-to-polygon form factor by fixed Gauss points on the receiving element and Lambert's
+// exact point-to-polygon formula at each: the solvers' cheap kernel.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "hrad/core/types.h"
+#include "hrad/formfactor/point_to_polygon.h"
+#include "hrad/formfactor/polygon_quadrature.h"
+
+namespace hrad {
+
+/// The receiver's points: the 3 x 3 product Gauss-Legendre rule on a quad's bilinear map (degree 5
+/// in (u, v)), the order-2 rule of polygon_quadrature() (12 points) on any other polygon. The
+/// weights sum to the area to rounding. They do not depend on the source, so each point's factors
+/// to the polygons of a closed surface sum to 1 and so do the element's (closure, to rounding).
+void receiver_gauss_points(std::span<const Vec3> receiver, const Vec3& unit_normal,
+                           std::vector<detail::WeightedPoint>& out);
+
+/// F(receiver -> source) = (1/A) sum_k w_k F(dA_k -> source) over receiver_gauss_points(), with
+/// point_to_polygon() (Cohen & Wallace 1993, eq. 4.16) at each point and `rel_tol` passed to it.
+/// The default is the plain contour sum: a solver needs far less than 1e-13 where the sum cancels,
+/// and the plain sum keeps closure to rounding. Unoccluded; the receiver's normal from its vertex
+/// order. The error is the rule's: ~1e-4 relative for unit squares 1 apart (Howell C-11), larger
+/// for a source close to the receiver against the receiver's size.
+double receiver_gauss_factor(std::span<const Vec3> receiver, std::span<const Vec3> source,
+                             double rel_tol = kLambertSumOnly);
+
+}  // namespace hrad

@@ -1,0 +1,68 @@
+// receiver_gauss_factor(): the solvers' Gauss-point kernel against Howell's closed forms and the
+// analytic kernel, and its closure (each point's factors to a closed surface sum to 1).
+#include <gtest/gtest.h>
+
+#include "hrad/formfactor/polygon_to_polygon.h"
+#include "hrad/formfactor/receiver_gauss_factor.h"
+#include "hrad/geometry/polygon.h"
+#include "howell.h"
+#include "test_geometry.h"
+
+namespace hrad::test {
+namespace {
+
+TEST(ReceiverGaussFactor, ConvergesToHowellC11WithDistance) {
+  // Parallel opposed unit squares at distance c (C-11). The 3 x 3 rule integrates a degree-5
+  // polynomial exactly; the integrand's variation over the receiver falls with distance, so the
+  // error falls fast: ~1e-4 at c = 1, far below at c = 4.
+  const Polygon a = rectangle(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY());
+  for (const auto& [c, bound] : {std::pair{1.0, 1e-3}, {4.0, 1e-6}, {16.0, 1e-9}}) {
+    const Polygon b = reversed(rectangle(Vec3(0, 0, c), Vec3::UnitX(), Vec3::UnitY()));
+    EXPECT_LE(relative_error(receiver_gauss_factor(a, b), howell_c11(1.0, 1.0, c)), bound) << c;
+  }
+}
+
+TEST(ReceiverGaussFactor, TriangleAndPentagonReceiversAgreeWithTheAnalyticKernel) {
+  const Polygon b = reversed(rectangle(Vec3(0, 0, 1.5), Vec3::UnitX(), Vec3::UnitY()));
+  const Polygon triangle = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};
+  const Polygon pentagon = {{0, 0, 0}, {1, 0, 0}, {1.2, 0.6, 0}, {0.5, 1.1, 0}, {-0.2, 0.6, 0}};
+  for (const Polygon& p : {triangle, pentagon})
+    EXPECT_LE(relative_error(receiver_gauss_factor(p, b), polygon_to_polygon(p, b).from_to), 1e-3) << p.size();
+}
+
+TEST(ReceiverGaussFactor, PointWeightsSumToTheArea) {
+  std::vector<detail::WeightedPoint> points;
+  const Polygon quad = {{0, 0, 0}, {2, 0, 0}, {2.5, 1, 0}, {0, 1.5, 0}};
+  const Polygon pentagon = {{0, 0, 0}, {1, 0, 0}, {1.2, 0.6, 0}, {0.5, 1.1, 0}, {-0.2, 0.6, 0}};
+  for (const Polygon& p : {quad, pentagon}) {
+    receiver_gauss_points(p, Vec3::UnitZ(), points);
+    double sum = 0.0;
+    for (const auto& w : points) sum += w.weight;
+    EXPECT_NEAR(sum, polygon_area(p), 1e-14 * polygon_area(p)) << p.size();
+  }
+}
+
+TEST(ReceiverGaussFactor, ClosureInABoxWithTJunctions) {
+  // An element of the floor of a 1 x 2 x 0.7 box against the other five faces, each split into a
+  // different grid: the factors sum to 1 to rounding, whatever the rule's own error.
+  const Vec3 x(1, 0, 0), y(0, 2, 0), z(0, 0, 0.7);
+  std::vector<Polygon> others;
+  auto split = [&](const Vec3& o, const Vec3& u, const Vec3& v, int n, int m) {
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < m; ++j) others.push_back(rectangle(o + (double(i) / n) * u + (double(j) / m) * v, u / n, v / m));
+  };
+  split(z, y, x, 2, 5);             // ceiling, -z
+  split(Vec3::Zero(), z, x, 1, 3);  // y = 0, +y
+  split(y, x, z, 4, 1);             // y = Ly, -y
+  split(Vec3::Zero(), y, z, 2, 2);  // x = 0, +x
+  split(x, z, y, 3, 3);             // x = Lx, -x
+  for (const Polygon& element : {rectangle(Vec3(0.2, 0.1, 0), 0.3 * x, 0.2 * y),
+                                 Polygon{{0, 0, 0}, {0.4, 0.1, 0}, {0.1, 0.5, 0}}}) {
+    double sum = 0.0;
+    for (const Polygon& o : others) sum += receiver_gauss_factor(element, o);
+    EXPECT_NEAR(sum, 1.0, 1e-12) << element.size();
+  }
+}
+
+}  // namespace
+}  // namespace hrad::test
