@@ -14,8 +14,12 @@
 // far_field_form_factor.h for the order) or has an accurate Lambert sum of its own.
 //
 // Cost: per edge one cross product, one square root, one atan2 (fast_atan2.h) and one division; the
-// relative vertices live on the stack for up to kStackVertices vertices, and the clipping runs only
-// when a vertex lies behind the tangent plane.
+// relative vertices live on the stack for up to kStackVertices vertices. The common call (no vertex
+// behind the tangent plane, no refinement) runs inline: clipping, refinement and the heap path for
+// larger polygons are out of line. Quads, the solvers' case, get their own copy with the contour
+// loop unrolled and the normal from the diagonals; the branches left on that path are predictable
+// (the nearest vertex is a selection). Eigen's fixed-size expressions are spelt out as scalars in
+// the loop, in the same order of operations (same rounding), where they compiled to extra shuffles.
 #include "hrad/formfactor/point_to_polygon.h"
 
 #include <array>
@@ -54,13 +58,15 @@ inline LambertSum lambert_sum(std::span<const Vec3> r, const Vec3& n) {
   for (std::size_t i = 0; i < k; ++i) {
     const Vec3& a = r[i];
     const Vec3& b = r[i + 1 == k ? 0 : i + 1];
-    const Vec3 c = b.cross(a);
-    const double s = c.norm();
+    const double cx = b.y() * a.z() - b.z() * a.y(), cy = b.z() * a.x() - b.x() * a.z(),
+                 cz = b.x() * a.y() - b.y() * a.x();
+    const double s = std::sqrt(cx * cx + cy * cy + cz * cz);
     // s == 0: x on the edge's line. Outside the segment gamma = 0; on it x would lie in the
     // polygon's plane, which the caller has excluded. Either way the term is 0.
     if (s > 0.0) {
       // The cosine factor first: its division then runs alongside the atan2.
-      const double term = detail::fast_atan2(s, a.dot(b)) * (n.dot(c) / s);
+      const double dot = a.x() * b.x() + a.y() * b.y() + a.z() * b.z();
+      const double term = detail::fast_atan2(s, dot) * ((n.x() * cx + n.y() * cy + n.z() * cz) / s);
       sum += term;
       magnitude += std::abs(term);
     }
