@@ -87,7 +87,10 @@ TEST(SceneGenerator, RoomTilesCoverTheBoundaryFacingInAndFurnitureIsClosedBoxesI
     } else {
       // Divergence theorem: a closed surface has zero vector area, and its volume
       // (1/3) sum A n.x is positive when its normals point outwards.
-      auto& [vector_area, volume] = closed[p.group];
+      // try_emplace with zeros: operator[] would value-initialise the pair, but Eigen's Vec3
+      // default constructor leaves its coefficients uninitialised (valgrind found it; under ASan
+      // the heap is not zero, which made this test fail only in the sanitizer build).
+      auto& [vector_area, volume] = closed.try_emplace(p.group, Vec3::Zero(), 0.0).first->second;
       vector_area += p.area * p.normal;
       volume += p.area * p.normal.dot(p.vertices[0]) / 3.0;
       for (const Vec3& v : p.vertices) {
