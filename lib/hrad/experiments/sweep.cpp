@@ -327,6 +327,21 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
     } else {
       s["note"] = "the hierarchical solver did not reach the target in this sweep";
     }
+    // Where both methods stop short of the target, the same comparison at the lowest error both
+    // reached (the larger of their best errors), so that every sweep states a measured ratio.
+    const double common = std::max(full.contains("best_error_l2") ? full["best_error_l2"].get<double>() : 0.0,
+                                   hr.contains("best_error_l2") ? hr["best_error_l2"].get<double>() : 0.0);
+    if (common > target_error) {
+      double SweepRow::*error = *field ? &SweepRow::error_l2_smooth : &SweepRow::error_l2;
+      const nlohmann::json f = time_to_error(by_method["full"], common, error),
+                           h = time_to_error(by_method["hierarchical"], common, error);
+      nlohmann::json c;
+      c["error_l2"] = common;
+      c["full_seconds"] = f["interpolated_seconds"];
+      c["hierarchical_seconds"] = h["interpolated_seconds"];
+      c["full_over_hierarchical_interpolated"] = f["interpolated_seconds"].get<double>() / h["interpolated_seconds"].get<double>();
+      j[std::string("speedup_at_common_error") + field] = std::move(c);
+    }
     j[std::string("speedup") + field] = std::move(s);
   }
   return j;
