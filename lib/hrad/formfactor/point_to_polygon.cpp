@@ -18,8 +18,7 @@
 // behind the tangent plane, no refinement) runs inline: clipping, refinement and the heap path for
 // larger polygons are out of line. Quads, the solvers' case, get their own copy with the contour
 // loop unrolled and the normal from the diagonals; the branches left on that path are predictable
-// (the nearest vertex is a selection). Eigen's fixed-size expressions are spelt out as scalars in
-// the loop, in the same order of operations (same rounding), where they compiled to extra shuffles.
+// (the nearest vertex is a selection). None of this changes a result's bits.
 #include "hrad/formfactor/point_to_polygon.h"
 
 #include <array>
@@ -47,29 +46,45 @@ struct LambertSum {
   double magnitude;  // sum of |terms| / (2 pi)
 };
 
+// Edge (a, b) of the contour seen from x: s = |c| with c = b x a, a.b, and n.c. Written out in
+// scalars, in Eigen's order of operations (same rounding) without the shuffles its 2-wide packets need.
+struct EdgeView {
+  double s, dot, n_dot_c;
+};
+
+inline EdgeView edge_view(const Vec3& a, const Vec3& b, const Vec3& n) {
+  const double cx = b.y() * a.z() - b.z() * a.y(), cy = b.z() * a.x() - b.x() * a.z(),
+               cz = b.x() * a.y() - b.y() * a.x();
+  return {std::sqrt(cx * cx + cy * cy + cz * cz), a.x() * b.x() + a.y() * b.y() + a.z() * b.z(),
+          n.x() * cx + n.y() * cy + n.z() * cz};
+}
+
+// Adds the edge's term gamma n.c / |c| to the sum and its magnitude to `magnitude`.
+inline void add_term(const EdgeView& e, double& sum, double& magnitude) {
+  // s == 0: x on the edge's line. Outside the segment gamma = 0; on it x would lie in the
+  // polygon's plane, which the caller has excluded. Either way the term is 0.
+  if (e.s > 0.0) {
+    // The cosine factor first: its division then runs alongside the atan2.
+    const double term = detail::fast_atan2(e.s, e.dot) * (e.n_dot_c / e.s);
+    sum += term;
+    magnitude += std::abs(term);
+  }
+}
+
 // Sum over the closed contour; `r` are the vertices relative to x. K > 0 fixes the vertex count at
-// compile time (the quad's loop is then unrolled), K = 0 takes r.size().
+// compile time (quads, the refinement's triangles): the loops are then unrolled, and all edges'
+// views come before the terms, which schedules better (BM_PointToQuad). K = 0 takes r.size().
 template <std::size_t K = 0>
 inline LambertSum lambert_sum(std::span<const Vec3> r, const Vec3& n) {
   constexpr double kInv2Pi = 0.5 / std::numbers::pi;
   double sum = 0.0, magnitude = 0.0;
-  const std::size_t k = K == 0 ? r.size() : K;
-#pragma GCC unroll 4
-  for (std::size_t i = 0; i < k; ++i) {
-    const Vec3& a = r[i];
-    const Vec3& b = r[i + 1 == k ? 0 : i + 1];
-    const double cx = b.y() * a.z() - b.z() * a.y(), cy = b.z() * a.x() - b.x() * a.z(),
-                 cz = b.x() * a.y() - b.y() * a.x();
-    const double s = std::sqrt(cx * cx + cy * cy + cz * cz);
-    // s == 0: x on the edge's line. Outside the segment gamma = 0; on it x would lie in the
-    // polygon's plane, which the caller has excluded. Either way the term is 0.
-    if (s > 0.0) {
-      // The cosine factor first: its division then runs alongside the atan2.
-      const double dot = a.x() * b.x() + a.y() * b.y() + a.z() * b.z();
-      const double term = detail::fast_atan2(s, dot) * ((n.x() * cx + n.y() * cy + n.z() * cz) / s);
-      sum += term;
-      magnitude += std::abs(term);
-    }
+  if constexpr (K > 0) {
+    std::array<EdgeView, K> edges;
+    for (std::size_t i = 0; i < K; ++i) edges[i] = edge_view(r[i], r[i + 1 == K ? 0 : i + 1], n);
+    for (const EdgeView& e : edges) add_term(e, sum, magnitude);
+  } else {
+    const std::size_t k = r.size();
+    for (std::size_t i = 0; i < k; ++i) add_term(edge_view(r[i], r[i + 1 == k ? 0 : i + 1], n), sum, magnitude);
   }
   return {sum * kInv2Pi, magnitude * kInv2Pi};
 }
@@ -97,7 +112,7 @@ struct Refinement {
       }
       return sum / std::numbers::pi;
     }
-    const LambertSum s = lambert_sum(t.v, n);
+    const LambertSum s = lambert_sum<3>(t.v, n);
     if (kEps * s.magnitude <= rel_tol * s.value || pieces >= kMaxPieces) return std::max(0.0, s.value);
     const auto halves = detail::bisect(t);
     return refine(halves[0]) + refine(halves[1]);
