@@ -73,7 +73,8 @@ inline void add_term(const EdgeView& e, double& sum, double& magnitude) {
 
 // Sum over the closed contour; `r` are the vertices relative to x. K > 0 fixes the vertex count at
 // compile time (quads, the refinement's triangles): the loops are then unrolled, and all edges'
-// views come before the terms, which schedules better (BM_PointToQuad). K = 0 takes r.size().
+// views come before the terms, which schedules better (BM_PointToQuad). K = 0 takes r.size(), in
+// blocks of the same form.
 template <std::size_t K = 0>
 inline LambertSum lambert_sum(std::span<const Vec3> r, const Vec3& n) {
   constexpr double kInv2Pi = 0.5 / std::numbers::pi;
@@ -83,8 +84,17 @@ inline LambertSum lambert_sum(std::span<const Vec3> r, const Vec3& n) {
     for (std::size_t i = 0; i < K; ++i) edges[i] = edge_view(r[i], r[i + 1 == K ? 0 : i + 1], n);
     for (const EdgeView& e : edges) add_term(e, sum, magnitude);
   } else {
+    constexpr std::size_t kBlock = 8;
     const std::size_t k = r.size();
-    for (std::size_t i = 0; i < k; ++i) add_term(edge_view(r[i], r[i + 1 == k ? 0 : i + 1], n), sum, magnitude);
+    std::array<EdgeView, kBlock> edges;
+    for (std::size_t start = 0; start < k; start += kBlock) {
+      const std::size_t m = std::min(kBlock, k - start);
+      for (std::size_t j = 0; j < m; ++j) {
+        const std::size_t i = start + j;
+        edges[j] = edge_view(r[i], r[i + 1 == k ? 0 : i + 1], n);
+      }
+      for (std::size_t j = 0; j < m; ++j) add_term(edges[j], sum, magnitude);
+    }
   }
   return {sum * kInv2Pi, magnitude * kInv2Pi};
 }
