@@ -11,10 +11,10 @@
 // once per edge and vertex, not per pair). Measured 2026-11-22 against the kernels before these
 // changes, in one run on the shared machine (load 5.8): point-to-quad 121 -> 104 ns (9.6 M/s),
 // quad-to-quad general 10.0 -> 4.75 us (210 k/s), other paths unchanged.
-// Then point-to-quad alone (quad path with the diagonals' normal and an unrolled contour loop,
-// clipping and refinement out of line; bit-identical results but for repeated vertices, now more
-// accurate when refined): 105 -> 73.8 ns CPU, 9.5 -> 13.5 M/s (medians
-// of 5, old binary at 5e6bff6 and new at 6f29559 back to back, load 8), with
+// Then point-to-quad alone (a quad path with the diagonals' normal and unrolled contour loops, all
+// edges' roots and dots before the atan2 terms, clipping and refinement out of line; bit-identical
+// results but for repeated vertices, now more accurate when refined): 105 -> 63.1 ns CPU,
+// 9.5 -> 15.9 M/s (medians of 5, old binary at 5e6bff6 and new at 98cf015 back to back, load 6), with
 //   taskset -c 0 build/bin/formfactor_benchmark --benchmark_filter=PointToQuad --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
