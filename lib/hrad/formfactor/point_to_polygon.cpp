@@ -180,7 +180,8 @@ inline double point_to_polygon(const Vec3& x, const Vec3& n, std::span<const Vec
   if (!any_above) return 0.0;  // behind or in the tangent plane
   const std::span<const Vec3> relative(r, k);
   // Newell's normal. For a quad, newell_normal()'s fan from r[0], (r1-r0)x(r2-r0) + (r2-r0)x(r3-r0),
-  // is (r2-r0)x(r3-r1): the diagonals' cross product, without the call.
+  // is (r2-r0)x(r3-r1) in exact arithmetic: the diagonals' cross product, without the call. Only
+  // its sign is used here (the refinement computes newell_normal() itself, so its bits stay).
   const Vec3 normal = K == 4 ? Vec3((r[2] - r[0]).cross(r[3] - r[1])) : newell_normal(relative);
   // x must be strictly in front of the polygon (its plane evaluated at the vertex nearest x).
   if (!(normal.dot(r[nearest]) < 0.0)) return 0.0;
