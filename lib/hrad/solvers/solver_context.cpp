@@ -1,16 +1,13 @@
 #include "hrad/solvers/solver_context.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <fstream>
 #include <functional>
 #include <sstream>
 
 #include <fmt/format.h>
-#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include "hrad/visibility/visibility.h"
 
@@ -131,42 +128,6 @@ std::size_t peak_memory_bytes() {
     }
   }
   return 0;
-}
-
-void gather(ElementHierarchy& hierarchy, std::span<const Link> links) {
-  for (std::size_t i = 0; i < hierarchy.size(); ++i) hierarchy.node(static_cast<NodeId>(i)).gathered = Rgb::Zero();
-  for (const Link& l : links) hierarchy.node(l.receiver).gathered += l.form_factor * hierarchy.node(l.source).radiosity;
-}
-
-GatherPlan::GatherPlan(std::size_t nodes, std::span<const Link> links) : offsets_(nodes + 1, 0) {
-  for (const Link& l : links) ++offsets_[static_cast<std::size_t>(l.receiver) + 1];
-  for (std::size_t i = 0; i < nodes; ++i) offsets_[i + 1] += offsets_[i];
-  source_.resize(links.size());
-  factor_.resize(links.size());
-  std::vector<std::uint64_t> cursor(offsets_.begin(), offsets_.end() - 1);
-  for (const Link& l : links) {
-    const std::uint64_t k = cursor[static_cast<std::size_t>(l.receiver)]++;
-    source_[k] = l.source;
-    factor_[k] = l.form_factor;
-  }
-}
-
-std::size_t GatherPlan::bytes() const {
-  return offsets_.capacity() * sizeof(std::uint64_t) + source_.capacity() * sizeof(NodeId) +
-         factor_.capacity() * sizeof(double);
-}
-
-void gather(ElementHierarchy& hierarchy, const GatherPlan& plan) {
-  const std::size_t n = plan.offsets_.size() - 1;
-  assert(n == hierarchy.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      Rgb sum = Rgb::Zero();
-      for (std::uint64_t k = plan.offsets_[i]; k < plan.offsets_[i + 1]; ++k)
-        sum += plan.factor_[k] * hierarchy.node(plan.source_[k]).radiosity;
-      hierarchy.node(static_cast<NodeId>(i)).gathered = sum;
-    }
-  });
 }
 
 namespace {

@@ -16,7 +16,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <span>
 #include <string>
 #include <vector>
 
@@ -114,39 +113,7 @@ inline void copy_gray(Rgb& value) { value[1] = value[2] = value[0]; }
 /// The peak resident set of this process in bytes (Linux VmHWM), 0 if unknown.
 std::size_t peak_memory_bytes();
 
-// --- Gather and push-pull, shared by iterative solvers on the hierarchy ---------------------
-
-/// An interaction: `receiver` gathers radiosity from `source` with factor F(receiver -> source).
-struct Link {
-  NodeId receiver = kNoNode;
-  NodeId source = kNoNode;
-  double form_factor = 0.0;
-};
-
-/// Sets `gathered` of every node to 0, then adds F * B(source) for each link to its receiver's
-/// `gathered` (all channels; Hanrahan, Salzman & Aupperle 1991, "GatherRad"). Deterministic:
-/// links are summed in their order.
-void gather(ElementHierarchy& hierarchy, std::span<const Link> links);
-
-/// The links of a gather grouped by receiver (counting sort, stable: each receiver keeps its
-/// links in their order), structure of arrays: 12 bytes per link (32-bit source, double factor)
-/// plus 8 bytes per node. gather(hierarchy, plan) sums each receiver's links in that order, in
-/// parallel over receivers: the same bits as gather(hierarchy, links) at any thread count.
-class GatherPlan {
- public:
-  GatherPlan(std::size_t nodes, std::span<const Link> links);
-  std::size_t links() const { return source_.size(); }
-  std::size_t bytes() const;
-
- private:
-  friend void gather(ElementHierarchy& hierarchy, const GatherPlan& plan);
-  std::vector<std::uint64_t> offsets_;
-  std::vector<NodeId> source_;
-  std::vector<double> factor_;
-};
-
-/// Parallel gather over `plan` (built for this hierarchy's size); see GatherPlan.
-void gather(ElementHierarchy& hierarchy, const GatherPlan& plan);
+// --- Push-pull, shared by the iterative solvers on the hierarchy ----------------------------
 
 /// Push-pull over every tree (HSA 1991, "PushPullRad"): gathered radiosity is pushed down to the
 /// leaves (adding parents' `gathered` to their children's), each leaf gets B = E + rho * (total
