@@ -84,20 +84,24 @@ struct Singularity {
   double re, im;
 };
 
+// h theta along p as scalar polynomials in s, fixed per edge pair, so that a Gauss node costs a few
+// multiply-adds, one square root and one fast_atan2. With w(s) = P(s) - Q0 = w0 + s a,
+// t = s + beta0 (beta0 = w0 . a, so |w|^2 = t^2 + rho0^2) and c = a . b:
+//   w . (w - Lq b) = t^2 + rho0^2 - Lq (w . b),  w . b = (w0 . b - beta0 c) + t c,
+//   h^2 = |w0 x b + s (a x b)|^2 = |a x b|^2 ((s - s*)^2 + im^2),
+// s* + i im being the branch point of h. Both are sums of squares about their minima, so they
+// round no worse than the vector forms they replace.
 struct SkewPair {
-  Vec3 w0, a, b;  // w0 = P0 - Q0; unit directions
-  Vec3 m, axb;    // w0 x b and a x b: w(s) x b = m + s (a x b)
+  double beta0;   // t = s + beta0
+  double lqc;     // Lq c
+  double x0;      // w . (w - Lq b) at t = 0: rho0^2 - Lq (w0 . b - beta0 c)
+  double s_star;  // real part of the branch point of h
+  double im2;     // its imaginary part squared
+  double naxb;    // |a x b|
   double lq;
   std::array<Singularity, 3> singular;
   int singular_count = 0;
 };
-
-inline double h_theta(const SkewPair& e, double s) {
-  const Vec3 w = e.w0 + s * e.a;
-  const double h = (e.m + s * e.axb).norm();
-  if (h == 0.0) return 0.0;
-  return h * fast_atan2(h * e.lq, w.dot(w - e.lq * e.b));
-}
 
 // Semi-major axis, in half-lengths of [lo, hi], of the ellipse with foci lo and hi through z: the
 // Bernstein ellipse through z has rho = a + sqrt(a^2 - 1) (Trefethen 2013, ATAP ch. 8), which
@@ -114,11 +118,23 @@ constexpr int kMinOrder = 3;
 constexpr int kMaxOrder = 32;
 static_assert(kMaxOrder <= kMaxGaussOrder);
 
+// The integral of h theta / |a x b| over [lo, hi] by the n-point rule, theta = atan2(h Lq, w . (w - Lq b))
+// the angle that q subtends at P(s) (where h = 0 the atan2 is finite and multiplied by 0).
 double gauss(const SkewPair& e, double lo, double hi, int n) {
   const GaussRule g = gauss_legendre(n);
   const double half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
+  const double t_mid = mid + e.beta0, d_mid = mid - e.s_star, y_scale = e.naxb * e.lq;
+  // All nodes' roots and arguments first, then the atan2 terms: independent chains, so the
+  // square roots overlap with the atan2 polynomials.
+  std::array<double, kMaxOrder> r, x;
+  for (int i = 0; i < n; ++i) {
+    const double t = t_mid + half * g.nodes[i];
+    const double d = d_mid + half * g.nodes[i];
+    r[i] = std::sqrt(d * d + e.im2);  // h / |a x b|
+    x[i] = t * (t - e.lqc) + e.x0;
+  }
   double sum = 0.0;
-  for (int i = 0; i < n; ++i) sum += g.weights[i] * h_theta(e, mid + half * g.nodes[i]);
+  for (int i = 0; i < n; ++i) sum += g.weights[i] * (r[i] * fast_atan2(r[i] * y_scale, x[i]));
   return sum * half;
 }
 
@@ -171,13 +187,12 @@ EdgePairIntegral skew_pair(const Segment& p, const Segment& q, const EndpointTer
   const Vec3& a = p.dir;
   const Vec3& b = q.dir;
   SkewPair e;
-  e.w0 = p.p0 - q.p0;
-  e.a = a;
-  e.b = b;
-  e.lq = q.length;
-  e.m = e.w0.cross(b);
-  e.axb = axb;
+  const Vec3 w0 = p.p0 - q.p0;
   const double c = a.dot(b);
+  e.beta0 = at_q0.beta;
+  e.lq = q.length;
+  e.lqc = q.length * c;
+  e.x0 = at_q0.rho * at_q0.rho - q.length * (w0.dot(b) - at_q0.beta * c);
   // Logarithmic part, both ends of q: Q0 (sign -1) and Q1 (sign +1).
   double sum = 0.0, magnitude = 0.0;
   for (int k = 0; k < 2; ++k) {
@@ -188,14 +203,15 @@ EdgePairIntegral skew_pair(const Segment& p, const Segment& q, const EndpointTer
     sum += k == 0 ? -part : part;
     e.singular[e.singular_count++] = {-t.beta, t.rho};  // P(s) = Q_k
   }
-  // Branch point of h(s) = |w0 x b + s (a x b)|.
+  // Branch point of h(s) = |w0 x b + s (a x b)| (a x b != 0: the pair is not parallel).
   const double axb2 = axb.squaredNorm();
-  if (axb2 > 0.0) {
-    const double s_star = -e.m.dot(axb) / axb2;
-    const double im = (e.m + s_star * axb).norm() / std::sqrt(axb2);
-    if (std::isfinite(s_star) && std::isfinite(im)) e.singular[e.singular_count++] = {s_star, im};
-  }
-  const double remainder = panels(e, 0.0, p.length, 1e-9 * p.length);
+  const Vec3 m = w0.cross(b);
+  e.naxb = std::sqrt(axb2);
+  e.s_star = -m.dot(axb) / axb2;
+  const double im = (m + e.s_star * axb).norm() / e.naxb;
+  e.im2 = im * im;
+  if (std::isfinite(e.s_star) && std::isfinite(im)) e.singular[e.singular_count++] = {e.s_star, im};
+  const double remainder = e.naxb * panels(e, 0.0, p.length, 1e-9 * p.length);
   return {sum + remainder, magnitude + std::abs(remainder)};
 }
 
