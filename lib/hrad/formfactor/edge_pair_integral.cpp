@@ -25,6 +25,8 @@
 #include <cmath>
 #include <algorithm>
 
+#include <Eigen/Core>
+
 #include "hrad/formfactor/fast_atan2.h"
 #include "hrad/formfactor/gauss_legendre.h"
 
@@ -125,14 +127,14 @@ double gauss(const SkewPair& e, double lo, double hi, int n) {
   const double half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
   const double t_mid = mid + e.beta0, d_mid = mid - e.s_star, y_scale = e.naxb * e.lq;
   // All nodes' roots and arguments first, then the atan2 terms: independent chains, so the
-  // square roots overlap with the atan2 polynomials.
-  std::array<double, kMaxOrder> r, x;
-  for (int i = 0; i < n; ++i) {
-    const double t = t_mid + half * g.nodes[i];
-    const double d = d_mid + half * g.nodes[i];
-    r[i] = std::sqrt(d * d + e.im2);  // h / |a x b|
-    x[i] = t * (t - e.lqc) + e.x0;
-  }
+  // square roots overlap with the atan2 polynomials (and Eigen's array square root is the packed
+  // instruction, without the scalar call's errno check).
+  using Column = Eigen::Array<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxOrder, 1>;
+  const Eigen::Map<const Eigen::ArrayXd> z(g.nodes.data(), n);
+  const Column d = d_mid + half * z;
+  const Column r = (d * d + e.im2).sqrt();  // h / |a x b|
+  const Column t = t_mid + half * z;
+  const Column x = t * (t - e.lqc) + e.x0;
   double sum = 0.0;
   for (int i = 0; i < n; ++i) sum += g.weights[i] * (r[i] * fast_atan2(r[i] * y_scale, x[i]));
   return sum * half;
