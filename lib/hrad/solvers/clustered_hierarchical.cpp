@@ -57,15 +57,6 @@ static_assert(sizeof(ClusterLink) == 20);
 /// that way, or its radiosity shown that way.
 using Bins = std::array<Rgb, 6>;
 
-double radiosity_bound(const Scene& scene) {
-  double e = 0.0, rho = 0.0;
-  for (const Material& m : scene.materials) {
-    e = std::max(e, m.emission.maxCoeff());
-    rho = std::max(rho, m.reflectance.maxCoeff());
-  }
-  return e / (1.0 - rho);
-}
-
 /// Pairs farther apart than this many times the sum of their bounding radii use the far-field
 /// transfer when its error is within the tolerance. 3, not 2: on the generated 1k-polygon office
 /// (hrad scene generate) the clustered solve absorbs 0.979-0.982 of the emitted power with 3 and
@@ -565,17 +556,11 @@ SolveSummary solve_clustered_hierarchical(const Scene& scene, const SolveOptions
   SolverContext ctx(scene, options, Method::kHierarchical);
   ElementHierarchy h(scene);
   const HierarchicalTolerances t = hierarchical_tolerances(scene, options);
-  record_tolerances(t, ctx.summary());
   auto& figures = ctx.summary().figures;
   figures["clustering"] = 1;
   ctx.summary().effects.reasons.push_back(
       "clustering: on (a volume hierarchy above the patches, linked from one root self-link)");
-  if (!ctx.effects().bounces) {
-    ctx.set_direct("nothing reflects: B = E, no links needed");
-    figures["refine_passes"] = 0;
-    figures["link_pairs"] = 0;
-    return ctx.finish(h, 0, out);
-  }
+  if (auto done = start_hierarchical(ctx, h, t, out)) return *done;
   std::unique_ptr<ClusterTree> tree;
   {
     auto phase = ctx.phase("clusters");
@@ -598,18 +583,7 @@ SolveSummary solve_clustered_hierarchical(const Scene& scene, const SolveOptions
     if (t.bfeps <= 0.0 || passes >= kMaxRefinePasses) break;
   }
 
-  double min_area = 0.0;
-  int max_depth = 0;
-  bool first = true;
-  for (const NodeId leaf : h.all_leaves()) {
-    const ElementNode& node = h.node(leaf);
-    min_area = first ? node.area : std::min(min_area, node.area);
-    max_depth = std::max(max_depth, node.depth);
-    first = false;
-  }
-  if (ctx.channels() == 1) {
-    for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity);
-  }
+  end_hierarchical(ctx, h);
   figures["refine_passes"] = passes;
   figures["link_pairs"] = static_cast<double>(solver.link_pairs());
   figures["far_field_links"] = static_cast<double>(solver.far_field_links());
@@ -621,8 +595,6 @@ SolveSummary solve_clustered_hierarchical(const Scene& scene, const SolveOptions
   figures["bytes_per_cluster_link"] = static_cast<double>(sizeof(ClusterLink));
   figures["stored_cluster_links"] = static_cast<double>(solver.stored_cluster_links());
   figures["link_bytes"] = static_cast<double>(solver.link_bytes());
-  figures["min_element_area"] = min_area;
-  figures["max_depth"] = max_depth;
   std::vector<std::pair<Vec3, Vec3>> segments;
   if (out != nullptr && options.record_links) {
     for (const PairLink& l : solver.pairs()) segments.emplace_back(solver.centre(l.p), solver.centre(l.q));

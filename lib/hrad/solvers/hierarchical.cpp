@@ -3,6 +3,7 @@
 #include "hrad/geometry/polygon.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -18,17 +19,6 @@ std::size_t directed_link_count(const std::vector<detail::LinkPair>& pairs) {
   std::size_t count = 0;
   for (const detail::LinkPair& pair : pairs) count += (pair.estimate.value > 0.0) + (pair.estimate.reverse > 0.0);
   return count;
-}
-
-/// Largest radiosity a closed scene can reach: with factors summing to at most 1 per element,
-/// B <= E_max / (1 - rho_max) (the Neumann series of B = E + rho F B).
-double radiosity_bound(const Scene& scene) {
-  double e = 0.0, rho = 0.0;
-  for (const Material& m : scene.materials) {
-    e = std::max(e, m.emission.maxCoeff());
-    rho = std::max(rho, m.reflectance.maxCoeff());
-  }
-  return e / (1.0 - rho);
 }
 
 /// Jacobi iterations of gather and push-pull (HSA 1991 sec. 4, "SolveSystem"). Returns false when
@@ -70,10 +60,40 @@ HierarchicalTolerances hierarchical_tolerances(const Scene& scene, const SolveOp
   return t;
 }
 
-void record_tolerances(const HierarchicalTolerances& t, SolveSummary& summary) {
-  summary.figures["feps"] = t.feps;
-  summary.figures["bfeps"] = t.bfeps;
-  summary.figures["aeps"] = t.aeps;
+std::optional<SolveSummary> start_hierarchical(SolverContext& ctx, const ElementHierarchy& h,
+                                              const HierarchicalTolerances& t, Solution* out) {
+  auto& figures = ctx.summary().figures;
+  figures["feps"] = t.feps;
+  figures["bfeps"] = t.bfeps;
+  figures["aeps"] = t.aeps;
+  if (ctx.effects().bounces) return std::nullopt;
+  ctx.set_direct("nothing reflects: B = E, no links needed");
+  figures["refine_passes"] = 0;
+  figures["link_pairs"] = 0;
+  return ctx.finish(h, 0, out);
+}
+
+double radiosity_bound(const Scene& scene) {
+  double e = 0.0, rho = 0.0;
+  for (const Material& m : scene.materials) {
+    e = std::max(e, m.emission.maxCoeff());
+    rho = std::max(rho, m.reflectance.maxCoeff());
+  }
+  return e / (1.0 - rho);
+}
+
+void end_hierarchical(SolverContext& ctx, ElementHierarchy& h) {
+  double min_area = INFINITY;
+  int max_depth = 0;
+  for (const NodeId leaf : h.all_leaves()) {
+    const ElementNode& node = h.node(leaf);
+    min_area = std::min(min_area, node.area);
+    max_depth = std::max(max_depth, node.depth);
+  }
+  if (ctx.channels() == 1)
+    for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity);
+  ctx.summary().figures["min_element_area"] = std::isfinite(min_area) ? min_area : 0.0;
+  ctx.summary().figures["max_depth"] = max_depth;
 }
 
 SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requested, Solution* out) {
@@ -86,16 +106,9 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   SolverContext ctx(scene, options, Method::kHierarchical);
   ElementHierarchy h(scene);
   const HierarchicalTolerances t = hierarchical_tolerances(scene, options);
-  record_tolerances(t, ctx.summary());
-  auto& figures = ctx.summary().figures;
   ctx.summary().effects.reasons.push_back("kernel: analytic (hierarchical links need exact, reciprocal factors at every size)");
-
-  if (!ctx.effects().bounces) {
-    ctx.set_direct("nothing reflects: B = E, no links needed");
-    figures["refine_passes"] = 0;
-    figures["link_pairs"] = 0;
-    return ctx.finish(h, 0, out);
-  }
+  if (auto done = start_hierarchical(ctx, h, t, out)) return *done;
+  auto& figures = ctx.summary().figures;
 
   const detail::RefineTolerances tol{t.feps, t.bfeps, t.aeps, detail::source_weights(scene, ctx.channels())};
   const int channels = ctx.channels();
@@ -135,23 +148,10 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     work = pairs;
   }
 
-  double min_area = 0.0;
-  int max_depth = 0;
-  bool first = true;
-  for (const NodeId leaf : h.all_leaves()) {
-    const ElementNode& node = h.node(leaf);
-    min_area = first ? node.area : std::min(min_area, node.area);
-    max_depth = std::max(max_depth, node.depth);
-    first = false;
-  }
-  if (channels == 1) {
-    for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity);
-  }
+  end_hierarchical(ctx, h);
   figures["refine_passes"] = passes;
   figures["link_pairs"] = static_cast<double>(pairs.size());
   figures["leaf_links"] = static_cast<double>(links.size());
-  figures["min_element_area"] = min_area;
-  figures["max_depth"] = max_depth;
   SolveSummary summary = ctx.finish(h, directed_link_count(pairs), out);
   if (out != nullptr && options.record_links) {
     // One segment per link pair, between the elements' centroids (for figures of the links).

@@ -56,6 +56,8 @@
 // is used when --bfeps is given.
 #pragma once
 
+#include <optional>
+
 #include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
 #include "hrad/solvers/solve.h"
@@ -69,6 +71,9 @@ inline constexpr double kAutoAepsFraction = 1.0 / 1000.0;
 /// BF refinement re-refines after each solve at most this many times (HSA sec. 4.2).
 inline constexpr int kMaxRefinePasses = 8;
 
+class ElementHierarchy;
+class SolverContext;
+
 /// The tolerances a hierarchical solve uses after the automatic defaults are applied.
 struct HierarchicalTolerances {
   double feps = 0.0;   ///< form-factor tolerance (0 = not used)
@@ -80,8 +85,19 @@ struct HierarchicalTolerances {
 /// times the total area when aeps is 0.
 HierarchicalTolerances hierarchical_tolerances(const Scene& scene, const SolveOptions& options);
 
-/// Records `t` in the report's figures "feps", "bfeps" and "aeps" (plain and clustered solves).
-void record_tolerances(const HierarchicalTolerances& t, SolveSummary& summary);
+/// The start both hierarchical solves (plain and clustered) share: records `t` in the report's
+/// figures "feps", "bfeps" and "aeps"; when nothing reflects, finishes `ctx` with B = E and no links
+/// and returns its summary (the caller returns it as is).
+std::optional<SolveSummary> start_hierarchical(SolverContext& ctx, const ElementHierarchy& h,
+                                              const HierarchicalTolerances& t, Solution* out);
+
+/// Largest radiosity a closed scene can reach: with factors summing to at most 1 per element,
+/// B <= E_max / (1 - rho_max) (the Neumann series of B = E + rho F B); the iterations' divergence test.
+double radiosity_bound(const Scene& scene);
+
+/// The end both share, before SolverContext::finish(): a gray scene's channel 0 copied to all three,
+/// and the figures "min_element_area" (smallest leaf) and "max_depth".
+void end_hierarchical(SolverContext& ctx, ElementHierarchy& h);
 
 /// Solves `scene` by hierarchical radiosity (options.method is ignored) and writes the leaves to
 /// `out` (if not null). Summary: links counts directed links (each stored interaction is gathered
