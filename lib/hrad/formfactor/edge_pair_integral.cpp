@@ -83,7 +83,7 @@ double log_part(double alpha, double c, double lp, const EndpointTerms& t, doubl
 
 // A singular point re + i im (im >= 0; its conjugate is one too) of h theta in the s plane.
 struct Singularity {
-  double re, im;
+  double re, im2;  // re and im^2
 };
 
 // h theta along p as scalar polynomials in s, fixed per edge pair, so that a Gauss node costs a few
@@ -109,8 +109,7 @@ struct SkewPair {
 // Bernstein ellipse through z has rho = a + sqrt(a^2 - 1) (Trefethen 2013, ATAP ch. 8), which
 // grows with a, so the nearest singularity is the one of smallest a. Real arithmetic only.
 inline double semi_major(const Singularity& z, double lo, double hi) {
-  const double im2 = z.im * z.im;
-  return (std::sqrt((z.re - lo) * (z.re - lo) + im2) + std::sqrt((z.re - hi) * (z.re - hi) + im2)) / (hi - lo);
+  return (std::sqrt((z.re - lo) * (z.re - lo) + z.im2) + std::sqrt((z.re - hi) * (z.re - hi) + z.im2)) / (hi - lo);
 }
 
 constexpr double kLogTarget = 18.5;  // ln(1e16) / 2: nodes n with rho^(-2n) <= 1e-16
@@ -127,8 +126,8 @@ double gauss(const SkewPair& e, double lo, double hi, int n) {
   const double half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
   const double t_mid = mid + e.beta0, d_mid = mid - e.s_star, y_scale = e.naxb * e.lq;
   // All nodes' roots and arguments first, then the atan2 terms: independent chains, so the
-  // square roots overlap with the atan2 polynomials (and Eigen's array square root is the packed
-  // instruction, without the scalar call's errno check).
+  // square roots overlap with the atan2 polynomials.
+  // (Eigen's array square root is the packed instruction, without the scalar call's errno check.)
   using Column = Eigen::Array<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxOrder, 1>;
   const Eigen::Map<const Eigen::ArrayXd> z(g.nodes.data(), n);
   const Column d = d_mid + half * z;
@@ -164,7 +163,7 @@ double panels(const SkewPair& e, double lo, double hi, double min_length) {
   int worst = 0;
   const double inv_half2 = 4.0 / ((hi - lo) * (hi - lo));
   for (int k = 0; k < e.singular_count; ++k) {
-    if (1.0 + e.singular[k].im * e.singular[k].im * inv_half2 >= a * a) continue;
+    if (1.0 + e.singular[k].im2 * inv_half2 >= a * a) continue;
     const double ak = semi_major(e.singular[k], lo, hi);
     if (ak < a) a = ak, worst = k;
   }
@@ -203,7 +202,7 @@ EdgePairIntegral skew_pair(const Segment& p, const Segment& q, const EndpointTer
     const double alpha = -v.dot(b - c * a);
     const double part = log_part(alpha, c, p.length, t, &magnitude);
     sum += k == 0 ? -part : part;
-    e.singular[e.singular_count++] = {-t.beta, t.rho};  // P(s) = Q_k
+    e.singular[e.singular_count++] = {-t.beta, t.rho * t.rho};  // P(s) = Q_k
   }
   // Branch point of h(s) = |w0 x b + s (a x b)| (a x b != 0: the pair is not parallel).
   const double axb2 = axb.squaredNorm();
@@ -212,7 +211,7 @@ EdgePairIntegral skew_pair(const Segment& p, const Segment& q, const EndpointTer
   e.s_star = -m.dot(axb) / axb2;
   const double im = (m + e.s_star * axb).norm() / e.naxb;
   e.im2 = im * im;
-  if (std::isfinite(e.s_star) && std::isfinite(im)) e.singular[e.singular_count++] = {e.s_star, im};
+  if (std::isfinite(e.s_star) && std::isfinite(im)) e.singular[e.singular_count++] = {e.s_star, e.im2};
   const double remainder = e.naxb * panels(e, 0.0, p.length, 1e-9 * p.length);
   return {sum + remainder, magnitude + std::abs(remainder)};
 }
@@ -225,18 +224,27 @@ Segment make_segment(const Vec3& p0, const Vec3& p1) {
   return {p0, p1, length > 0.0 ? Vec3(d / length) : Vec3::Zero(), length};
 }
 
-EndpointTerms endpoint_terms(const Segment& p, const Vec3& q) {
+VertexPairLog vertex_pair_log(const Vec3& p, const Vec3& q) {
+  const double r2 = (p - q).squaredNorm();
+  return {r2, log_or_zero(r2)};
+}
+
+EndpointTerms endpoint_terms(const Segment& p, const Vec3& q, const VertexPairLog& at_p0, const VertexPairLog& at_p1) {
   EndpointTerms t;
-  const Vec3 v0 = p.p0 - q, v1 = p.p1 - q;
+  const Vec3 v0 = p.p0 - q;
   t.beta = v0.dot(p.dir);
   t.rho = v0.cross(p.dir).norm();
-  t.r2_0 = v0.squaredNorm();
-  t.r2_1 = v1.squaredNorm();
-  t.log0 = log_or_zero(t.r2_0);
-  t.log1 = log_or_zero(t.r2_1);
+  t.r2_0 = at_p0.r2;
+  t.r2_1 = at_p1.r2;
+  t.log0 = at_p0.log;
+  t.log1 = at_p1.log;
   t.h_atan0 = h_atan(t.rho, t.beta);
   t.h_atan1 = h_atan(t.rho, p.length + t.beta);
   return t;
+}
+
+EndpointTerms endpoint_terms(const Segment& p, const Vec3& q) {
+  return endpoint_terms(p, q, vertex_pair_log(p.p0, q), vertex_pair_log(p.p1, q));
 }
 
 EdgePairIntegral edge_pair_log_integral(const Segment& p, const Segment& q, const EndpointTerms& at_q0,

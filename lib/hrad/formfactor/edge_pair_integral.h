@@ -31,6 +31,16 @@ struct EndpointTerms {
 };
 EndpointTerms endpoint_terms(const Segment& p, const Vec3& q);
 
+/// |P - Q|^2 and its logarithm (0 where it is 0) for a vertex P of one polygon and Q of the other:
+/// the end of one edge and the start of the next share it.
+struct VertexPairLog {
+  double r2 = 0.0, log = 0.0;
+};
+VertexPairLog vertex_pair_log(const Vec3& p, const Vec3& q);
+
+/// endpoint_terms(p, q) from vertex_pair_log(p.p0, q) and vertex_pair_log(p.p1, q).
+EndpointTerms endpoint_terms(const Segment& p, const Vec3& q, const VertexPairLog& at_p0, const VertexPairLog& at_p1);
+
 /// Unit directions parallel within their rounding (|a x b| <= 1e-15): a tilt of 1e-15 changes K
 /// by ~1e-15 Lp Lq, so such pairs take the parallel closed form.
 inline bool parallel_directions(const Vec3& axb) { return axb.squaredNorm() <= 1e-30; }
