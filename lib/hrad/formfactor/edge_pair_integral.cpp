@@ -23,7 +23,9 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <algorithm>
+#include <utility>
 
 #include <Eigen/Core>
 
@@ -119,25 +121,62 @@ constexpr int kMinOrder = 3;
 constexpr int kMaxOrder = 32;
 static_assert(kMaxOrder <= kMaxGaussOrder);
 
-// The integral of h theta / |a x b| over [lo, hi] by the n-point rule, theta = atan2(h Lq, w . (w - Lq b))
+// fast_atan2 (fast_atan2.h: the same table and series) for y >= 0, with the octant applied in plain
+// double arithmetic: within ~1.5 ulp of pi rather than ~1, which the quadrature sum's own rounding
+// hides, for a shorter chain per node. 0 for y = x = 0 (the division is then 0 / DBL_MIN).
+inline double node_atan2(double y, double x) {
+  const double ax = std::abs(x);
+  const double num = std::min(y, ax), den = std::max(std::max(y, ax), std::numeric_limits<double>::min());
+  const double t = num / den;
+  const AtanNode& node = kAtanTable[static_cast<std::size_t>(static_cast<int>(t * kAtanIntervals + 0.5))];
+  const double d = t - node.c;
+  const auto& a = node.a;
+  const double d2 = d * d, d4 = d2 * d2, d8 = d4 * d4;
+  const double q = ((a[1] + a[2] * d) + d2 * (a[3] + a[4] * d)) +
+                   d4 * ((a[5] + a[6] * d) + d2 * (a[7] + a[8] * d)) + d8 * a[9];
+  const double atan_t = node.hi + (node.lo + (a[0] * d + d2 * q));
+  // By octant (2 [y > |x|] + [x < 0]): offset + sign atan(t).
+  static constexpr std::array<std::array<double, 2>, 4> kOctant = {{
+      {0.0, 1.0},
+      {3.1415926535897931, -1.0},
+      {1.5707963267948966, -1.0},
+      {1.5707963267948966, 1.0},
+  }};
+  const auto& oct = kOctant[static_cast<std::size_t>(2 * int(y > ax) + int(x < 0.0))];
+  return oct[0] + oct[1] * atan_t;
+}
+
+// The integral of h theta / |a x b| over [lo, hi] by the N-point rule, theta = atan2(h Lq, w . (w - Lq b))
 // the angle that q subtends at P(s) (where h = 0 the atan2 is finite and multiplied by 0).
-double gauss(const SkewPair& e, double lo, double hi, int n) {
-  const GaussRule g = gauss_legendre(n);
+// One instance per N: fixed trip counts, so the loops' exits are predicted (the order changes from
+// one edge pair to the next).
+template <int N>
+double gauss_fixed(const SkewPair& e, double lo, double hi) {
+  const GaussRule g = gauss_legendre(N);
   const double half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
   const double t_mid = mid + e.beta0, d_mid = mid - e.s_star, y_scale = e.naxb * e.lq;
   // All nodes' roots and arguments first, then the atan2 terms: independent chains, so the
-  // square roots overlap with the atan2 polynomials.
-  // (Eigen's array square root is the packed instruction, without the scalar call's errno check.)
-  using Column = Eigen::Array<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxOrder, 1>;
-  const Eigen::Map<const Eigen::ArrayXd> z(g.nodes.data(), n);
+  // square roots overlap with the atan2 polynomials (and Eigen's array square root is the packed
+  // instruction, without the scalar call's errno check).
+  using Column = Eigen::Array<double, N, 1>;
+  const Eigen::Map<const Column> z(g.nodes.data());
   const Column d = d_mid + half * z;
   const Column r = (d * d + e.im2).sqrt();  // h / |a x b|
   const Column t = t_mid + half * z;
   const Column x = t * (t - e.lqc) + e.x0;
   double sum = 0.0;
-  for (int i = 0; i < n; ++i) sum += g.weights[i] * (r[i] * fast_atan2(r[i] * y_scale, x[i]));
+  for (int i = 0; i < N; ++i) sum += g.weights[i] * (r[i] * node_atan2(r[i] * y_scale, x[i]));
   return sum * half;
 }
+
+using GaussFn = double (*)(const SkewPair&, double, double);
+template <int... I>
+constexpr std::array<GaussFn, sizeof...(I)> gauss_table(std::integer_sequence<int, I...>) {
+  return {&gauss_fixed<I + 1>...};
+}
+constexpr std::array<GaussFn, kMaxOrder> kGauss = gauss_table(std::make_integer_sequence<int, kMaxOrder>{});
+
+inline double gauss(const SkewPair& e, double lo, double hi, int n) { return kGauss[static_cast<std::size_t>(n - 1)](e, lo, hi); }
 
 // The Gauss order for a panel whose nearest singularity has semi-major axis a: the smallest n with
 // rho^(-2n) <= 1e-16, i.e. n ln(rho) >= kLogTarget, i.e. a >= cosh(kLogTarget / n) (rho = a +
