@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
+
 #include "../support/temp_dir.h"
 #include "hrad/core/error.h"
 #include "hrad/io/atomic_file.h"
@@ -197,6 +200,40 @@ TEST(AtomicFile, FailedWriteLeavesNothingBehind) {
   std::string text;
   in >> text;
   EXPECT_EQ(text, "whole");
+}
+
+TEST(ObjReader, CutFloorCornellBoxLeavesOutExactlyTheBlocksFootprints) {
+  // cornell_box_cut_floor.obj: the floor pieces face up and cover the published floor trapezoid
+  // minus the two blocks' footprints (shoelace of their published bottom corners); nothing else
+  // changes: the other groups' areas equal cornell_box.obj's.
+  std::vector<std::string> warnings;
+  const Scene cut = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box_cut_floor.obj", &warnings);
+  const Scene whole = read_obj_scene(kCornell);
+  EXPECT_TRUE(warnings.empty());
+  auto shoelace = [](std::initializer_list<std::pair<double, double>> p) {
+    const std::vector<std::pair<double, double>> v(p);
+    double a = 0.0;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const auto& [x0, z0] = v[i];
+      const auto& [x1, z1] = v[(i + 1) % v.size()];
+      a += x0 * z1 - x1 * z0;
+    }
+    return 0.5 * std::abs(a);
+  };
+  const double footprints = shoelace({{130, 65}, {82, 225}, {240, 272}, {290, 114}}) +
+                            shoelace({{423, 247}, {265, 296}, {314, 456}, {472, 406}});
+  std::map<std::string, double> cut_area, whole_area;
+  for (const Patch& p : cut.patches) {
+    cut_area[p.group] += p.area;
+    if (p.group == "floor") {
+      EXPECT_NEAR(p.normal.y(), 1.0, 1e-15);
+      for (const Vec3& v : p.vertices) EXPECT_EQ(v.y(), 0.0);
+    }
+  }
+  for (const Patch& p : whole.patches) whole_area[p.group] += p.area;
+  EXPECT_NEAR(cut_area["floor"], 0.5 * (552.8 + 549.6) * 559.2 - footprints, 1e-9 * cut_area["floor"]);
+  for (const auto& [group, area] : whole_area)
+    if (group != "floor") EXPECT_NEAR(cut_area[group], area, 1e-9 * area) << group;
 }
 
 }  // namespace
