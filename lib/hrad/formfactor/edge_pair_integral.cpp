@@ -243,14 +243,16 @@ EdgePairIntegral skew_pair(const Segment& p, const Segment& q, const EndpointTer
     sum += k == 0 ? -part : part;
     e.singular[e.singular_count++] = {-t.beta, t.rho * t.rho};  // P(s) = Q_k
   }
-  // Branch point of h(s) = |w0 x b + s (a x b)| (a x b != 0: the pair is not parallel).
-  const double axb2 = axb.squaredNorm();
+  // Branch point of h(s) = |m + s (a x b)|, m = w0 x b (a x b != 0: the pair is not parallel),
+  // where |h|^2 is least. im^2 from the remaining vector (not from the distance between the lines,
+  // |w0 . (a x b)| / |a x b|, equal in exact arithmetic): s*^2 + im^2 then matches |m|^2 / |a x b|^2
+  // to rounding however nearly parallel the edges are.
+  const double axb2 = axb.squaredNorm(), inv_axb2 = 1.0 / axb2;
   const Vec3 m = w0.cross(b);
   e.naxb = std::sqrt(axb2);
-  e.s_star = -m.dot(axb) / axb2;
-  const double im = (m + e.s_star * axb).norm() / e.naxb;
-  e.im2 = im * im;
-  if (std::isfinite(e.s_star) && std::isfinite(im)) e.singular[e.singular_count++] = {e.s_star, e.im2};
+  e.s_star = -m.dot(axb) * inv_axb2;
+  e.im2 = (m + e.s_star * axb).squaredNorm() * inv_axb2;
+  if (std::isfinite(e.s_star) && std::isfinite(e.im2)) e.singular[e.singular_count++] = {e.s_star, e.im2};
   const double remainder = e.naxb * panels(e, 0.0, p.length, 1e-9 * p.length);
   return {sum + remainder, magnitude + std::abs(remainder)};
 }
