@@ -23,7 +23,6 @@
 
 #include <array>
 #include <cmath>
-#include <limits>
 #include <algorithm>
 #include <utility>
 
@@ -89,7 +88,7 @@ struct Singularity {
 };
 
 // h theta along p as scalar polynomials in s, fixed per edge pair, so that a Gauss node costs a few
-// multiply-adds, one square root and one fast_atan2. With w(s) = P(s) - Q0 = w0 + s a,
+// multiply-adds, one square root and one atan2. With w(s) = P(s) - Q0 = w0 + s a,
 // t = s + beta0 (beta0 = w0 . a, so |w|^2 = t^2 + rho0^2) and c = a . b:
 //   w . (w - Lq b) = t^2 + rho0^2 - Lq (w . b),  w . b = (w0 . b - beta0 c) + t c,
 //   h^2 = |w0 x b + s (a x b)|^2 = |a x b|^2 ((s - s*)^2 + im^2),
@@ -123,10 +122,11 @@ static_assert(kMaxOrder <= kMaxGaussOrder);
 
 // fast_atan2 (fast_atan2.h: the same table and series) for y >= 0, with the octant applied in plain
 // double arithmetic: within ~1.5 ulp of pi rather than ~1, which the quadrature sum's own rounding
-// hides, for a shorter chain per node. 0 for y = x = 0 (the division is then 0 / DBL_MIN).
+// hides, for a shorter chain per node. 0 for y = x = 0 (and for NaN, which would index the table).
 inline double node_atan2(double y, double x) {
   const double ax = std::abs(x);
-  const double num = std::min(y, ax), den = std::max(std::max(y, ax), std::numeric_limits<double>::min());
+  const double num = std::min(y, ax), den = std::max(y, ax);
+  if (!(den > 0.0)) return 0.0;
   const double t = num / den;
   const AtanNode& node = kAtanTable[static_cast<std::size_t>(static_cast<int>(t * kAtanIntervals + 0.5))];
   const double d = t - node.c;
