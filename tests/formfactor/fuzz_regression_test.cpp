@@ -26,5 +26,20 @@ TEST(FuzzRegression, PartlySharedCollinearEdge) {
   EXPECT_NEAR(f.from_to, q.value, 1e-6 + 10 * q.error_estimate);
 }
 
+// formfactor_json_fuzzer, corpus file regression_huge_quad.json (session 3): a unit right triangle
+// (with a repeated vertex) under a quad 1 wide and 1.1e12 long, 1 above. The contour sum is rounding
+// noise at that aspect ratio and the refinement ran out of pieces; the noise (F = 4.8e6) was returned.
+// The part of the quad beyond y = 1e3 adds less than 1e-3 to the factor: compare with the quad cut there.
+TEST(FuzzRegression, HugeQuadAboveATriangle) {
+  const std::vector<Vec3> from = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const std::vector<Vec3> to = {{0, 0, 1}, {0, 1112244074723.0, 1}, {1, 1, 1}, {1, 0, 1}};
+  const std::vector<Vec3> cut = {{0, 0, 1}, {0, 1e3, 1}, {1, 1, 1}, {1, 0, 1}};
+  const PairFormFactor f = polygon_to_polygon(from, to), g = polygon_to_polygon(from, cut);
+  ASSERT_TRUE(std::isfinite(f.from_to) && std::isfinite(f.to_from));
+  EXPECT_GE(f.from_to, 0.0);
+  EXPECT_LE(f.from_to, 1.0);
+  EXPECT_NEAR(f.from_to, g.from_to, 1e-3);
+}
+
 }  // namespace
 }  // namespace hrad
