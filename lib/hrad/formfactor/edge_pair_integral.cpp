@@ -127,14 +127,8 @@ inline double node_atan2(double y, double x) {
   const double ax = std::abs(x);
   const double num = std::min(y, ax), den = std::max(y, ax);
   if (!(den > 0.0)) return 0.0;
-  const double t = num / den;
-  const AtanNode& node = kAtanTable[static_cast<std::size_t>(static_cast<int>(t * kAtanIntervals + 0.5))];
-  const double d = t - node.c;
-  const auto& a = node.a;
-  const double d2 = d * d, d4 = d2 * d2, d8 = d4 * d4;
-  const double q = ((a[1] + a[2] * d) + d2 * (a[3] + a[4] * d)) +
-                   d4 * ((a[5] + a[6] * d) + d2 * (a[7] + a[8] * d)) + d8 * a[9];
-  const double atan_t = node.hi + (node.lo + (a[0] * d + d2 * q));
+  const auto [node, series] = atan_reduced(num / den);
+  const double atan_t = node.hi + (node.lo + series);
   // By octant (2 [y > |x|] + [x < 0]): offset + sign atan(t).
   static constexpr std::array<std::array<double, 2>, 4> kOctant = {{
       {0.0, 1.0},

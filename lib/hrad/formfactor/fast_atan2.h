@@ -19,6 +19,25 @@ inline constexpr int kAtanIntervals = 64;
 /// c = k/64 for k = 0..64, except c = 0 for k = 1 (fast_atan2.cpp).
 extern const std::array<AtanNode, kAtanIntervals + 1> kAtanTable;
 
+/// The reduced argument of fast_atan2() and its variants: for t in [0, 1], the nearest table node c
+/// and the series atan(t) - atan(c) = a1 d + d^2 (a2 + ... + a10 d^8), d = t - c.
+struct AtanReduced {
+  const AtanNode& node;
+  double series;
+};
+inline AtanReduced atan_reduced(double t) {
+  const AtanNode& node = kAtanTable[static_cast<std::size_t>(static_cast<int>(t * kAtanIntervals + 0.5))];
+  // Exact: Sterbenz's lemma (t in [c/2, 2c]) for c > 0, and d = t for c = 0.
+  const double d = t - node.c;
+  const auto& a = node.a;
+  // The inner sum by Estrin's scheme (a short dependency chain); a1 d apart, so that for c = 0
+  // (a1 = 1) the leading term is not rounded.
+  const double d2 = d * d, d4 = d2 * d2, d8 = d4 * d4;
+  const double q = ((a[1] + a[2] * d) + d2 * (a[3] + a[4] * d)) +
+                   d4 * ((a[5] + a[6] * d) + d2 * (a[7] + a[8] * d)) + d8 * a[9];
+  return {node, a[0] * d + d2 * q};
+}
+
 /// atan2(y, x) in [0, pi] for y >= 0 and finite arguments (0 for y = x = 0).
 /// Table-driven argument reduction (Tang 1990, "Table-driven implementation of the exponential
 /// function", ACM TOMS 16(4); Muller, "Elementary Functions", 3rd ed., ch. 6): with
@@ -44,17 +63,7 @@ inline double fast_atan2(double y, double x) {
   const double ax = std::abs(x);
   const double num = std::min(y, ax), den = std::max(y, ax);
   if (!(den > 0.0)) return 0.0;
-  const double t = num / den;
-  const AtanNode& node = kAtanTable[static_cast<std::size_t>(static_cast<int>(t * kAtanIntervals + 0.5))];
-  // Exact: Sterbenz's lemma (t in [c/2, 2c]) for c > 0, and d = t for c = 0.
-  const double d = t - node.c;
-  const auto& a = node.a;
-  // a1 d + d^2 (a2 + a3 d + ... + a10 d^8), the inner sum by Estrin's scheme (a short dependency
-  // chain); a1 d apart, so that for c = 0 (a1 = 1) the leading term is not rounded.
-  const double d2 = d * d, d4 = d2 * d2, d8 = d4 * d4;
-  const double q = ((a[1] + a[2] * d) + d2 * (a[3] + a[4] * d)) +
-                   d4 * ((a[5] + a[6] * d) + d2 * (a[7] + a[8] * d)) + d8 * a[9];
-  const double series = a[0] * d + d2 * q;
+  const auto [node, series] = atan_reduced(num / den);
   const auto& oct = kOctant[static_cast<std::size_t>(2 * int(y > ax) + int(x < 0.0))];
   const double inner_hi = oct[2] * node.hi;
   const double s = oct[0] + inner_hi;
