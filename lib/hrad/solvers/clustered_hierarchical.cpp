@@ -139,8 +139,7 @@ class ClusteredSolver {
     // exactly as without clustering.
     detail::RefineResult refined = detail::refine_pairs(h_, ctx_.evaluator(), std::move(element_work), refine_tol_, channels_);
     element_pairs_ = refined.links.size();
-    element_directed_ = 0;
-    for (const detail::LinkPair& l : refined.links) element_directed_ += (l.estimate.value > 0.0) + (l.estimate.reverse > 0.0);
+    element_directed_ = detail::directed_link_count(refined.links);
     leaf_links_ = detail::leaf_links(h_, refined.links);
     if (ctx_.options().record_links) {
       for (const detail::LinkPair& l : refined.links)

@@ -14,12 +14,6 @@
 namespace hrad {
 namespace {
 
-/// Directed links: both directions of every stored interaction that carries a factor.
-std::size_t directed_link_count(const std::vector<detail::LinkPair>& pairs) {
-  std::size_t count = 0;
-  for (const detail::LinkPair& pair : pairs) count += (pair.estimate.value > 0.0) + (pair.estimate.reverse > 0.0);
-  return count;
-}
 
 /// Jacobi iterations of gather and push-pull (HSA 1991 sec. 4, "SolveSystem"). Returns false when
 /// the iteration stopped without converging.
@@ -138,7 +132,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
       links = detail::leaf_links(h, pairs);
     }
     ctx.progress("hierarchical: pass " + std::to_string(passes) + ": " + std::to_string(h.size()) + " nodes, " +
-                 std::to_string(directed_link_count(pairs)) + " links, " + std::to_string(links.size()) +
+                 std::to_string(detail::directed_link_count(pairs)) + " links, " + std::to_string(links.size()) +
                  " leaf factors");
     // A re-refinement that changed nothing leaves the last solution consistent with its links.
     if (passes > 1 && !changed) break;
@@ -152,7 +146,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   figures["refine_passes"] = passes;
   figures["link_pairs"] = static_cast<double>(pairs.size());
   figures["leaf_links"] = static_cast<double>(links.size());
-  SolveSummary summary = ctx.finish(h, directed_link_count(pairs), out);
+  SolveSummary summary = ctx.finish(h, detail::directed_link_count(pairs), out);
   if (out != nullptr && options.record_links) {
     // One segment per link pair, between the elements' centroids (for figures of the links).
     out->link_segments.clear();

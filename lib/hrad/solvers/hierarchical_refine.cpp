@@ -67,6 +67,12 @@ PointFactorSpread factor_variation(std::span<const Vec3> receiver, std::span<con
   return spread;
 }
 
+std::size_t directed_link_count(std::span<const LinkPair> pairs) {
+  std::size_t count = 0;
+  for (const LinkPair& pair : pairs) count += (pair.estimate.value > 0.0) + (pair.estimate.reverse > 0.0);
+  return count;
+}
+
 void evaluate_candidate(const ElementHierarchy& h, const FormFactorEvaluator& evaluator, RefineCandidate& c,
                         const RefineTolerances* tol) {
   const ElementNode& p = h.node(c.p);

@@ -50,6 +50,9 @@ inline RefineCandidate candidate(NodeId p, NodeId q) {
 /// gathers from p with estimate.reverse = F(q -> p).
 using LinkPair = RefineCandidate;
 
+/// Directed links: both directions of every stored interaction that carries a factor.
+std::size_t directed_link_count(std::span<const LinkPair> pairs);
+
 struct RefineTolerances {
   double feps = 0.0;   ///< 0 = no form-factor test
   double bfeps = 0.0;  ///< 0 = no B*F test
