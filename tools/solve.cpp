@@ -54,7 +54,7 @@ void add_solve_command(CLI::App& app) {
     std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", kernel = "contour", clustering = "auto",
                 report, out;
     double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
-    int max_iterations = 10000, visibility_samples = 16, threads = 0;
+    int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0;
     bool quiet = false;
   };
   auto args = std::make_shared<Args>();
@@ -70,7 +70,7 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--linear-solver", args->linear_solver, "Full: lu | jacobi | gauss_seidel (default lu)");
   cmd->add_option("--effects", args->effects, "auto | all (default auto)");
   cmd->add_option("--kernel", args->kernel, "Form-factor kernel: contour (default) | analytic");
-  cmd->add_option("--visibility-samples", args->visibility_samples, "Point pairs per partially visible pair (default 16)");
+  cmd->add_option("--visibility-samples", args->visibility_samples, "Point pairs per partially visible pair (default 64)");
   cmd->add_option("--clustering", args->clustering, "Hierarchical: auto | on | off (default auto: on from 200 patches)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--report", args->report, "Write the solve report (JSON) here");

@@ -13,6 +13,8 @@ namespace hrad {
 namespace {
 
 const std::string kCornell = std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj";
+// The published floor: one quad with the blocks standing inside it.
+const std::string kCornellUncut = std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box_uncut_floor.obj";
 
 const Patch& patch_of_group(const Scene& s, const std::string& group) {
   for (const Patch& p : s.patches)
@@ -22,7 +24,7 @@ const Patch& patch_of_group(const Scene& s, const std::string& group) {
 
 TEST(ObjReader, CornellBoxCountsAreasNormalsMaterials) {
   std::vector<std::string> warnings;
-  const Scene s = read_obj_scene(kCornell, &warnings);
+  const Scene s = read_obj_scene(kCornellUncut, &warnings);
   // floor, light, 8 ceiling quads around the light, back, green, red (2 triangles), 5 + 5 block faces
   EXPECT_EQ(s.faces.size(), 24u);
   EXPECT_EQ(s.patches.size(), 24u);
@@ -211,12 +213,12 @@ TEST(AtomicFile, FailedWriteLeavesNothingBehind) {
 }
 
 TEST(ObjReader, CutFloorCornellBoxLeavesOutExactlyTheBlocksFootprints) {
-  // cornell_box_cut_floor.obj: the floor pieces face up and cover the published floor trapezoid
-  // minus the two blocks' footprints (shoelace of their published bottom corners); nothing else
-  // changes: the other groups' areas equal cornell_box.obj's.
+  // cornell_box.obj: the floor pieces face up and cover the published floor trapezoid (the one quad
+  // of cornell_box_uncut_floor.obj) minus the two blocks' footprints (shoelace of their published
+  // bottom corners); nothing else changes: the other groups' areas equal the uncut box's.
   std::vector<std::string> warnings;
-  const Scene cut = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box_cut_floor.obj", &warnings);
-  const Scene whole = read_obj_scene(kCornell);
+  const Scene cut = read_obj_scene(kCornell, &warnings);
+  const Scene whole = read_obj_scene(kCornellUncut);
   EXPECT_TRUE(warnings.empty());
   auto shoelace = [](std::initializer_list<std::pair<double, double>> p) {
     const std::vector<std::pair<double, double>> v(p);

@@ -40,9 +40,10 @@
 //    From rho = 0.9 on this is the stopping test's share (tolerance 1e-6 leaves ~1e-6 / (1 - rho)).
 //    HSA's push with their oracle (feps 0.005, aeps total/500) left the box 2.2% / 4.7% / 7.7% off;
 //    the new oracle alone was worse (fewer links): the push fixes rooms at any feps;
-//  * cornell_box.obj against the full matrix at its defaults (492 elements, 16 visibility
-//    samples): worst |B_hr - B_full| over patches and channels relative to the larger of the
-//    patch's brightest channel and the reflectors' mean; HR's seconds / elements / links:
+//  * the Cornell box with the published floor (now cornell_box_uncut_floor.obj) against the full
+//    matrix at its defaults (492 elements, 16 visibility samples): worst |B_hr - B_full| over
+//    patches and channels relative to the larger of the patch's brightest channel and the
+//    reflectors' mean; HR's seconds / elements / links:
 //      feps 0.04   1.9%  1.8 s  492 / 11864        feps 0.005   0.8%  7.4 s  492 / 47692
 //      feps 0.02   1.6%  2.5 s  492 / 20778        feps 0.0025  0.3% 10.4 s  492 / 65528
 //      feps 0.01   0.8%  2.2-4.5 s 492 / 31310     (aeps total/1000; at feps 0.01, 2.2 s unloaded)

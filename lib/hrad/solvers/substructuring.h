@@ -11,9 +11,10 @@
 namespace hrad {
 
 /// Shooting-patch area when options.patch_area is 0: this fraction of the scene's total area.
-/// On the Cornell box (cornell_box.obj, 24 input polygons, 492 elements at the default max_area)
-/// against the full matrix at its defaults, the worst per-patch difference is 60% with the input
-/// polygons as patches (the whole floor shoots its mean radiosity at the block sides beside it),
+/// On the Cornell box with the published floor (cornell_box_uncut_floor.obj, 24 input polygons, 492
+/// elements at the default max_area) against the full matrix at its defaults, the worst per-patch
+/// difference is 60% with the input polygons as patches (the whole floor shoots its mean radiosity
+/// at the block sides beside it),
 /// 7.3% at total/64 (123 patches, 2.4 s) and 5.3% at total/128 (297 patches, 4.9 s, slower than the
 /// full matrix): total/64 keeps nN four times below n^2 and every patch within a few percent.
 inline constexpr double kAutoPatchAreaFraction = 1.0 / 64.0;
