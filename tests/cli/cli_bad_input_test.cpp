@@ -44,6 +44,9 @@ const BadInput kCases[] = {
     {"solve_negative_bfeps", {}, "solve " + kScene + " --bfeps -0.1 --out {d}/s.ply", "--bfeps"},
     {"solve_zero_tolerance", {}, "solve " + kScene + " --tolerance 0 --out {d}/s.ply", "--tolerance"},
     {"solve_negative_max_area", {}, "solve " + kScene + " --method full --max-area -2 --out {d}/s.ply", "--max-area"},
+    // A full matrix larger than the machine's memory: refused before meshing, not std::bad_alloc.
+    {"solve_full_matrix_too_large", {}, "solve " + kScene + " --method full --max-area 1e-9 --out {d}/s.ply --report {d}/r.json",
+     "--max-area"},
     {"solve_inf_patch_area", {}, "solve " + kScene + " --method substructure --patch-area inf --out {d}/s.ply",
      "--patch-area"},
     {"solve_zero_max_iterations", {}, "solve " + kScene + " --max-iterations 0 --report {d}/r.json", "--max-iterations"},

@@ -1,14 +1,18 @@
 #include "hrad/solvers/full_matrix.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <vector>
+
+#include <unistd.h>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "hrad/core/error.h"
 #include "hrad/solvers/solver_context.h"
 
 namespace hrad {
@@ -53,6 +57,17 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
   ElementHierarchy h(scene);
   const double max_area = ctx.max_area();
   ctx.summary().figures["max_area"] = max_area;
+  // The dense F and, for LU, one system matrix at a time: refuse up front what cannot fit rather
+  // than fail in the allocator halfway through. Elements before meshing: a patch of area A splits
+  // into quarters until they are <= max_area (about: quads that are not parallelograms split unevenly).
+  double estimate = 0.0;
+  for (const Patch& p : scene.patches) estimate += std::pow(4.0, std::max(0.0, std::ceil(std::log(p.area / max_area) / std::log(4.0))));
+  const double needed = 2.0 * estimate * estimate * sizeof(double);
+  const double physical = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+  if (physical > 0.0 && needed > 0.8 * physical)
+    throw Error(fmt::format("full matrix: about {:.0f} elements need two dense {:.0f} x {:.0f} matrices ({:.1f} GB) and "
+                            "this machine has {:.1f} GB: raise --max-area (now {:g}) or use --method hierarchical",
+                            estimate, estimate, estimate, needed / 1e9, physical / 1e9, max_area));
   {
     auto phase = ctx.phase("mesh");
     h.subdivide_uniform(max_area);
