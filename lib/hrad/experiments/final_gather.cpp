@@ -1,6 +1,8 @@
 #include "hrad/experiments/final_gather.h"
 
+#include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 
@@ -41,6 +43,8 @@ double weighted_fraction(const Visibility& visibility, const Vec3& x, const Vec3
   return visible / weight;
 }
 
+constexpr std::int8_t kUnclassified = -1;
+
 }  // namespace
 
 std::vector<Rgb> final_gather_reflected(const Scene& scene, const Solution& solution,
@@ -58,18 +62,32 @@ std::vector<Rgb> final_gather_reflected(const Scene& scene, const Solution& solu
   if (options.threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, options.threads);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 8), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::int8_t> patch_class(scene.patches.size(), kUnclassified);
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const SurfaceSample& s = points[i];
       const Patch& patch = scene.patches[static_cast<std::size_t>(s.patch)];
       const Rgb rho = scene.material_of(patch).reflectance;
       Rgb gathered = Rgb::Zero();
+      // Each source patch classified once from x: a patch fully visible or hidden from x makes all
+      // its leaves so (the classification is conservative both ways), so only the leaves of
+      // partly visible patches are classified and sampled one by one. The same sums in the same
+      // order as classifying every leaf.
+      std::fill(patch_class.begin(), patch_class.end(), kUnclassified);
       for (std::size_t f = 0; f < leaves.size(); ++f) {
         const int source_patch = solution.face_patch[f];
         if (source_patch == s.patch) continue;  // a planar patch does not see itself
+        std::int8_t& whole = patch_class[static_cast<std::size_t>(source_patch)];
+        if (occlusion && whole == kUnclassified) {
+          const Patch& source = scene.patches[static_cast<std::size_t>(source_patch)];
+          whole = static_cast<std::int8_t>(
+              visibility->estimate_from_point(s.position, s.patch, source.vertices, source_patch, 0, 0).pair_class);
+        }
+        if (whole == static_cast<std::int8_t>(PairClass::kFacingAway) || whole == static_cast<std::int8_t>(PairClass::kFullyHidden))
+          continue;
         const double factor = point_to_polygon(s.position, patch.normal, leaves[f]);
         if (factor <= 0.0) continue;
         double seen = 1.0;
-        if (occlusion) {
+        if (occlusion && whole == static_cast<std::int8_t>(PairClass::kPartial)) {
           // Seed by point and leaf: the same reference whatever the thread count. One sample
           // classifies (exact when fully visible or hidden); a partly visible leaf is sampled.
           const std::uint64_t seed = (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(f);
