@@ -132,7 +132,8 @@ void add_sweep_command(CLI::App& app) {
     run_plot("pareto.py", {dir + "/sweep.csv", dir + "/pareto.png", "What accuracy costs in time: " + scene.path});
 
     std::cout << fmt::format("{} runs; wrote {}/sweep.csv, reference.json, fit.json, pareto.png\n", rows.size(), dir);
-    for (const char* key : {"speedup", "speedup_smooth", "speedup_at_common_error", "speedup_at_common_error_smooth"})
+    for (const char* key : {"speedup", "speedup_smooth", "speedup_at_common_error", "speedup_at_common_error_smooth",
+                            "speedup_extrapolated", "speedup_extrapolated_smooth"})
       if (fits.contains(key)) std::cout << key << ": " << fits[key].dump() << "\n";
   });
 }

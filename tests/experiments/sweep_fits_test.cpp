@@ -66,5 +66,21 @@ TEST(SweepFits, BelowEveryRunTheRatioIsStatedAtTheLowestCommonError) {
   EXPECT_NEAR(j["speedup_at_common_error_smooth"]["full_over_hierarchical_interpolated"].get<double>(), 32.0, 1e-9);
 }
 
+TEST(SweepFits, BeyondTheRunsTheFitsExtrapolateTheTimeToTheTarget) {
+  // Target 1%: error 2 / sqrt(n) reaches it at n* = 40000 (displayed field 1 / sqrt(n): 10000), where
+  // the full matrix takes 1e-5 n*^2 = 16000 s and HR 1e-3 n* = 40 s: ratio 400 (displayed: 100).
+  const nlohmann::json j = sweep_fits(synthetic_sweep(), 0.01);
+  ASSERT_TRUE(j.contains("speedup_extrapolated"));
+  const auto& x = j["speedup_extrapolated"];
+  EXPECT_NEAR(x["full"]["elements"].get<double>(), 40000.0, 1e-3);
+  EXPECT_NEAR(x["full"]["seconds"].get<double>(), 16000.0, 1e-3);
+  EXPECT_NEAR(x["hierarchical"]["seconds"].get<double>(), 40.0, 1e-6);
+  EXPECT_NEAR(x["full_over_hierarchical"].get<double>(), 400.0, 1e-4);
+  EXPECT_NEAR(j["speedup_extrapolated_smooth"]["full_over_hierarchical"].get<double>(), 100.0, 1e-4);
+  EXPECT_NE(x["note"].get<std::string>().find("extrapolated"), std::string::npos);
+  // Where the runs reach the target, no extrapolation is made.
+  EXPECT_FALSE(sweep_fits(synthetic_sweep(), 0.06).contains("speedup_extrapolated"));
+}
+
 }  // namespace
 }  // namespace hrad

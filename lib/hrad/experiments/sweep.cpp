@@ -344,6 +344,34 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
     }
     j[std::string("speedup") + field] = std::move(s);
   }
+  // Beyond the runs: where neither reached the target, the fits' estimate of each method's time to
+  // it, error ~ k n^-g and seconds ~ a n^b over the runs that vary the element count (max_area for
+  // the full matrix, aeps for HR): n* = (k / target)^(1/g), time a n*^b. An extrapolation, labelled.
+  for (const char* field : {"", "_smooth"}) {
+    if (j[std::string("speedup") + field].contains("full_over_hierarchical_measured")) continue;
+    nlohmann::json x;
+    x["note"] = "extrapolated from power-law fits beyond the sweep's runs, not measured";
+    x["target_error_l2"] = target_error;
+    bool both = true;
+    for (const char* method : {"full", "hierarchical"}) {
+      std::vector<const SweepRow*> runs;
+      for (const SweepRow* r : by_method[method])
+        if (r->parameter == (std::string(method) == "full" ? "max_area" : "aeps")) runs.push_back(r);
+      const nlohmann::json err = *field ? maybe_fit(runs, +elements, +[](const SweepRow& r) { return r.error_l2_smooth; })
+                                        : maybe_fit(runs, +elements, +[](const SweepRow& r) { return r.error_l2; });
+      const nlohmann::json time = maybe_fit(runs, +elements, +[](const SweepRow& r) { return r.seconds; });
+      if (err.is_null() || time.is_null() || !(err["b"].get<double>() < 0.0)) {
+        both = false;
+        break;
+      }
+      const double n = std::pow(err["a"].get<double>() / target_error, -1.0 / err["b"].get<double>());
+      x[method] = {{"error_vs_elements", err}, {"elements", n},
+                   {"seconds", time["a"].get<double>() * std::pow(n, time["b"].get<double>())}};
+    }
+    if (!both) continue;
+    x["full_over_hierarchical"] = x["full"]["seconds"].get<double>() / x["hierarchical"]["seconds"].get<double>();
+    j[std::string("speedup_extrapolated") + field] = std::move(x);
+  }
   return j;
 }
 

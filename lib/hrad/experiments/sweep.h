@@ -89,7 +89,9 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
 /// the hierarchical feps runs error_l2 ~ k feps^beta; plus, per method and per field (constant:
 /// "time_to_target_error", interpolated: "time_to_target_error_smooth"), the time to reach
 /// `target_error` (log-log interpolation between the bracketing runs, or "not reached"), and the
-/// full/hierarchical ratios ("speedup", "speedup_smooth").
+/// full/hierarchical ratios ("speedup", "speedup_smooth"); where the runs do not bracket the target,
+/// the ratio at the lowest error both reached ("speedup_at_common_error[_smooth]") and the fits'
+/// extrapolation to the target, labelled as such ("speedup_extrapolated[_smooth]").
 nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error = 0.01);
 
 /// The rows as CSV (header: method,parameter,value,elements,links,form_factor_evaluations,
