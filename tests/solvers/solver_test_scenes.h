@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hrad/core/scene.h"
+#include "hrad/core/solution.h"
 #include "hrad/geometry/polygon.h"
 
 namespace hrad::test {
@@ -102,6 +103,41 @@ inline Scene scaled(Scene s, double factor) {
   }
   for (InputFace& f : s.faces) f.area *= factor * factor;
   return s;
+}
+
+// Largest per-face, per-channel difference between two solutions of `s` (a face's radiosity is
+// the area mean of its patches, as `hrad solve` reports it), relative to the brighter of `ref`'s
+// and its area-mean reflected radiosity (emitters skipped); and the ratio of their total powers.
+struct Agreement {
+  double largest = 0.0, power_ratio = 0.0;
+};
+inline Agreement face_agreement(const Scene& s, const Solution& ref, const Solution& other) {
+  double mean_reflected = 0.0, power_ref = 0.0, power_other = 0.0;
+  std::vector<Rgb> face_ref(s.faces.size(), Rgb::Zero()), face_other(s.faces.size(), Rgb::Zero());
+  std::vector<double> face_area(s.faces.size(), 0.0);
+  std::vector<bool> emits(s.faces.size(), false);
+  for (std::size_t i = 0; i < s.patches.size(); ++i) {
+    const Patch& p = s.patches[i];
+    const Material& m = s.material_of(p);
+    const auto f = static_cast<std::size_t>(p.face);
+    mean_reflected += p.area * (ref.patch_radiosity[i] - m.emission).mean() / s.total_area();
+    power_ref += p.area * ref.patch_radiosity[i].mean();
+    power_other += p.area * other.patch_radiosity[i].mean();
+    face_ref[f] += p.area * ref.patch_radiosity[i];
+    face_other[f] += p.area * other.patch_radiosity[i];
+    face_area[f] += p.area;
+    emits[f] = m.is_emitter();
+  }
+  Agreement a;
+  a.power_ratio = power_other / power_ref;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (emits[f] || !(face_area[f] > 0.0)) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double r = face_ref[f][c] / face_area[f];
+      a.largest = std::max(a.largest, std::abs(face_other[f][c] / face_area[f] - r) / std::max(r, mean_reflected));
+    }
+  }
+  return a;
 }
 
 }  // namespace hrad::test

@@ -86,6 +86,7 @@ FormFactorEstimate FormFactorEvaluator::estimate(std::span<const Vec3> receiver,
     }
     if (c == PairClass::kPartial) {
       const auto [fraction, error] = weighted_visibility(receiver, receiver_patch, source, source_patch);
+      e.partial = true;
       e.visibility = fraction;
       e.error = error;
     }

@@ -47,6 +47,8 @@ struct FormFactorEstimate {
   /// pair was classified exactly or visibility is off; the analytic kernel is exact to rounding).
   double error = 0.0;
   bool facing_away = false;  ///< culled without calling the kernel (value 0)
+  /// Classified partly visible (visibility sampled), even when every sample was visible or hidden.
+  bool partial = false;
 };
 
 /// Thread-safe: estimate() may be called from many threads; counters are atomic, and each call

@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "hrad/mesh/element_hierarchy.h"
@@ -101,6 +102,12 @@ PointFactorSpread factor_variation(std::span<const Vec3> receiver, std::span<con
 /// is marked split_unevaluated, without a kernel or visibility call.
 void evaluate_candidate(const ElementHierarchy& hierarchy, const FormFactorEvaluator& evaluator, RefineCandidate& c,
                         const RefineTolerances* tolerances = nullptr);
+
+/// Each side's gather error relative to its tolerance: p's (the factor's variation over p plus the
+/// visibility error) times q's weight over feps, or times q's radiosity over bfeps (the larger), and
+/// the same for q. The pair passes when both are <= 1.
+std::pair<double, double> weighted_errors(const ElementHierarchy& hierarchy, const RefineCandidate& pair,
+                                          const RefineTolerances& tolerances, int channels);
 
 /// True when the pair must be refined further under `tolerances`: the factors' variation (see the
 /// file comment) or their visibility error exceeds feps, or either times the source's current
