@@ -117,8 +117,10 @@ void evaluate_candidate(const ElementHierarchy& h, const FormFactorEvaluator& ev
     // Partly visible: a shadow boundary may cross the receiver, and every point of it gets the
     // pair's mean visible fraction, so a point's error can be as large as its unoccluded factor.
     // By the classification, not the sampled fraction: a pair whose samples all passed is still
-    // partly hidden (accepting it as visible lit the floor behind the Cornell box's tall block 11%
-    // too bright once the light's elements got small enough for every sample to miss the block).
+    // partly hidden. Accepting it as visible lit the floor behind the Cornell box's tall block too
+    // brightly once the light's elements got small enough for every sample to miss the block: at
+    // aeps = total/10000, 11.3% off an 8k-element full matrix before this rule, 4.6% after it (and
+    // 1.7% with decide()'s weighted split choice).
     c.variation_p = std::max(e.visibility * dev_p, s_p.largest);
     c.variation_q = std::max(e.visibility * dev_q, s_q.largest);
   }
