@@ -1,5 +1,7 @@
 // receiver_gauss_factor(): the solvers' Gauss-point kernel against Howell's closed forms and the
 // analytic kernel, and its closure (each point's factors to a closed surface sum to 1).
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "hrad/formfactor/polygon_to_polygon.h"
@@ -62,6 +64,35 @@ TEST(ReceiverGaussFactor, ClosureInABoxWithTJunctions) {
     for (const Polygon& o : others) sum += receiver_gauss_factor(element, o);
     EXPECT_NEAR(sum, 1.0, 1e-12) << element.size();
   }
+}
+
+TEST(ReceiverFactorByDistance, CentroidRuleErrorStaysBelowTheQuarterSquaredRatio) {
+  // Small square receivers, tilted and offset, against a unit square: where the one-point rule is
+  // taken, it is within (diameter / gap)^2 / 4 of the 3 x 3 rule (whose own error is far below,
+  // see ConvergesToHowellC11WithDistance); near ones take the 3 x 3 rule itself, to the bit.
+  const Polygon source = reversed(rectangle(Vec3(0, 0, 3), Vec3::UnitX(), Vec3::UnitY()));
+  int centroid = 0, gauss = 0;
+  for (const double side : {0.05, 0.2, 0.6})
+    for (const double offset : {0.0, 1.5, 3.0})
+      for (const double tilt : {0.0, 0.5}) {
+        const Vec3 u = side * Vec3(std::cos(tilt), 0, std::sin(tilt)), v = side * Vec3::UnitY();
+        const Polygon receiver = rectangle(Vec3(offset, 0.3, 0), u, v);
+        const double exact = receiver_gauss_factor(receiver, source);
+        const double f = receiver_factor_by_distance(receiver, source, 0.1);
+        const double gap = (polygon_centroid(receiver) - polygon_centroid(source)).norm() -
+                           0.5 * (u + v).norm() - std::sqrt(0.5);
+        const double ratio = (u + v).norm() / gap;
+        if (ratio <= 0.1) {
+          ++centroid;
+          EXPECT_LE(relative_error(f, exact), 0.25 * ratio * ratio) << side << " " << offset << " " << tilt;
+          EXPECT_GT(relative_error(f, exact), 0.0);  // it is the other rule
+        } else {
+          ++gauss;
+          EXPECT_EQ(f, exact) << side << " " << offset << " " << tilt;
+        }
+      }
+  EXPECT_GT(centroid, 0);
+  EXPECT_GT(gauss, 0);
 }
 
 }  // namespace

@@ -131,10 +131,9 @@ TEST(Hierarchical, LeafFactorsSumToOneInAClosedRoom) {
   const detail::LeafLinks links = detail::leaf_links(h, refined.links);
   std::vector<double> row(h.size(), 0.0);
   std::size_t inherited = 0;
-  for (std::size_t k = 0; k < links.size(); ++k) {
-    ASSERT_TRUE(h.node(links.leaf[k]).is_leaf());
-    row[static_cast<std::size_t>(links.leaf[k])] += links.factor[k];
-  }
+  for (std::size_t k = 0; k < links.size(); ++k) ASSERT_TRUE(h.node(links.leaf[k]).is_leaf());
+  for (std::size_t n = 0; n < h.size(); ++n)
+    for (std::uint64_t j = links.leaf_offsets[n]; j < links.leaf_offsets[n + 1]; ++j) row[n] += links.factor[j];
   // Each side's weights are a mean: they sum to 1.
   for (const detail::LeafLinks::Pair& e : links.pairs) {
     double wp = 0.0, wq = 0.0;

@@ -1,6 +1,8 @@
 #include "hrad/formfactor/receiver_gauss_factor.h"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 
 #include "hrad/formfactor/gauss_legendre.h"
 #include "hrad/geometry/polygon.h"
@@ -36,6 +38,31 @@ double receiver_gauss_factor(std::span<const Vec3> receiver, std::span<const Vec
     area += p.weight;  // the weights' own sum, so that factors to a closed surface sum to 1 exactly
   }
   return area > 0.0 ? std::max(0.0, sum / area) : 0.0;
+}
+
+namespace {
+
+// The vertices' mean and the largest distance from it: a bounding sphere (not the smallest).
+std::pair<Vec3, double> vertex_sphere(std::span<const Vec3> p) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& v : p) c += v;
+  c /= static_cast<double>(p.size());
+  double r2 = 0.0;
+  for (const Vec3& v : p) r2 = std::max(r2, (v - c).squaredNorm());
+  return {c, std::sqrt(r2)};
+}
+
+}  // namespace
+
+double receiver_factor_by_distance(std::span<const Vec3> receiver, std::span<const Vec3> source, double centroid_ratio) {
+  const auto [rc, rr] = vertex_sphere(receiver);
+  const auto [sc, sr] = vertex_sphere(source);
+  const double gap = (rc - sc).norm() - rr - sr;
+  if (!(gap > 0.0) || 2.0 * rr > centroid_ratio * gap) return receiver_gauss_factor(receiver, source);
+  // A quad's bilinear centre and a triangle's centroid are the vertices' mean; other polygons
+  // take the area centroid.
+  const Vec3 x = receiver.size() <= 4 ? rc : polygon_centroid(receiver);
+  return std::max(0.0, point_to_polygon(x, newell_normal(receiver).normalized(), source, kLambertSumOnly));
 }
 
 }  // namespace hrad

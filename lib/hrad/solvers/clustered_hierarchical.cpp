@@ -239,8 +239,9 @@ class ClusteredSolver {
   std::size_t link_bytes() const {
     return links_.capacity() * sizeof(DirectedLink) + cluster_links_.capacity() * sizeof(ClusterLink) +
            (offsets_.capacity() + cluster_offsets_.capacity()) * sizeof(std::uint64_t) +
-           leaf_links_.leaf.capacity() * sizeof(NodeId) +
+           leaf_links_.leaf.capacity() * sizeof(NodeId) + leaf_links_.other_side.capacity() * sizeof(std::uint32_t) +
            (leaf_links_.factor.capacity() + leaf_links_.weight.capacity()) * sizeof(double) +
+           leaf_links_.leaf_offsets.capacity() * sizeof(std::uint64_t) +
            leaf_links_.pairs.capacity() * sizeof(detail::LeafLinks::Pair);
   }
   std::size_t stored_cluster_links() const { return cluster_links_.size(); }

@@ -3,13 +3,22 @@
 #include <array>
 #include <cmath>
 
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "hrad/core/error.h"
 #include "hrad/formfactor/receiver_gauss_factor.h"
 #include "hrad/geometry/polygon.h"
 
 namespace hrad::detail {
+namespace {
+
+// Leaves this small against their distance to the link's other side take the one-point rule
+// (receiver_factor_by_distance()).
+constexpr double kLeafCentroidRatio = 0.1;
+
+}  // namespace
 
 LeafLinks leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs) {
   LeafLinks out;
@@ -31,15 +40,17 @@ LeafLinks leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs)
     total += e.p_count + e.q_count;
     out.pairs.push_back(e);
   }
+  if (2 * pairs.size() >= (std::size_t{1} << 32))
+    throw Error(fmt::format("hierarchical: {} link pairs exceed the leaf gather's 32-bit side index", pairs.size()));
   out.leaf.resize(total);
-  out.factor.resize(total);
   out.weight.resize(total);
+  BigVector<double> factor(total);  // in entry order until grouped by leaf below
   // One side: leaves below `r` against `s`, whose total exchange A_r F(r -> s) is `exchange`.
   auto resolve = [&](NodeId r, NodeId s, double f_rs, double exchange, std::size_t first) {
     const ElementNode& rn = h.node(r);
     if (rn.is_leaf()) {
       out.leaf[first] = r;
-      out.factor[first] = f_rs;
+      factor[first] = f_rs;
       out.weight[first] = 1.0;
       return;
     }
@@ -48,9 +59,9 @@ LeafLinks leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs)
     double weighted = 0.0;
     for (std::size_t k = 0; k < l.size(); ++k) {
       const ElementNode& leaf = h.node(l[k]);
-      const double f = receiver_gauss_factor(leaf.polygon(), source);
+      const double f = receiver_factor_by_distance(leaf.polygon(), source, kLeafCentroidRatio);
       out.leaf[first + k] = l[k];
-      out.factor[first + k] = f;
+      factor[first + k] = f;
       weighted += leaf.area * f;
     }
     // Scaled to the link's exact exchange (visible fraction included); where the rule sees
@@ -58,13 +69,13 @@ LeafLinks leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs)
     for (std::size_t k = 0; k < l.size(); ++k) {
       const double area = h.node(l[k]).area;
       if (!(exchange > 0.0)) {  // linked with a sampled visible fraction of 0
-        out.factor[first + k] = 0.0;
+        factor[first + k] = 0.0;
         out.weight[first + k] = area / rn.area;
       } else if (weighted > 0.0) {
-        out.factor[first + k] *= exchange / weighted;
-        out.weight[first + k] = area * out.factor[first + k] / exchange;
+        factor[first + k] *= exchange / weighted;
+        out.weight[first + k] = area * factor[first + k] / exchange;
       } else {
-        out.factor[first + k] = f_rs;
+        factor[first + k] = f_rs;
         out.weight[first + k] = area / rn.area;
       }
     }
@@ -79,21 +90,23 @@ LeafLinks leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs)
       resolve(pair.q, pair.p, pair.estimate.reverse, exchange, e.q_first);
     }
   });
-  // Entries grouped by leaf for the parallel gather (stable counting sort keeps entry order).
-  if (total < (std::size_t{1} << 32) && 2 * pairs.size() < (std::size_t{1} << 32)) {
-    out.leaf_offsets.assign(h.size() + 1, 0);
-    out.other_side.resize(total);
-    for (std::size_t k = 0; k < out.pairs.size(); ++k) {
-      const LeafLinks::Pair& e = out.pairs[k];
-      for (std::size_t i = e.p_first; i < e.p_first + e.p_count; ++i) out.other_side[i] = static_cast<std::uint32_t>(2 * k);
-      for (std::size_t i = e.q_first; i < e.q_first + e.q_count; ++i) out.other_side[i] = static_cast<std::uint32_t>(2 * k + 1);
+  // Grouped by leaf for the gather (a stable counting sort keeps entry order within a leaf).
+  out.leaf_offsets.assign(h.size() + 1, 0);
+  for (const NodeId l : out.leaf) ++out.leaf_offsets[static_cast<std::size_t>(l) + 1];
+  for (std::size_t i = 0; i < h.size(); ++i) out.leaf_offsets[i + 1] += out.leaf_offsets[i];
+  out.factor.resize(total);
+  out.other_side.resize(total);
+  std::vector<std::uint64_t> cursor(out.leaf_offsets.begin(), out.leaf_offsets.end() - 1);
+  for (std::size_t k = 0; k < out.pairs.size(); ++k) {
+    const LeafLinks::Pair& e = out.pairs[k];
+    for (std::size_t side = 0; side < 2; ++side) {
+      const std::size_t first = side == 0 ? e.p_first : e.q_first, count = side == 0 ? e.p_count : e.q_count;
+      for (std::size_t i = first; i < first + count; ++i) {
+        const std::uint64_t to = cursor[static_cast<std::size_t>(out.leaf[i])]++;
+        out.factor[to] = factor[i];
+        out.other_side[to] = static_cast<std::uint32_t>(2 * k + side);  // p entries gather q's mean
+      }
     }
-    for (const NodeId l : out.leaf) ++out.leaf_offsets[static_cast<std::size_t>(l) + 1];
-    for (std::size_t i = 0; i < h.size(); ++i) out.leaf_offsets[i + 1] += out.leaf_offsets[i];
-    out.by_leaf.resize(total);
-    std::vector<std::uint64_t> cursor(out.leaf_offsets.begin(), out.leaf_offsets.end() - 1);
-    for (std::size_t i = 0; i < total; ++i)
-      out.by_leaf[cursor[static_cast<std::size_t>(out.leaf[i])]++] = static_cast<std::uint32_t>(i);
   }
   return out;
 }
@@ -104,37 +117,25 @@ void gather_leaf_links(ElementHierarchy& h, const LeafLinks& links) {
     for (std::size_t k = first; k < first + n; ++k) b += links.weight[k] * h.node(links.leaf[k]).radiosity;
     return b;
   };
-  if (links.leaf_offsets.size() == h.size() + 1) {
-    // Each side's mean once (index 2 k: pair k's q side, 2 k + 1: its p side), then each leaf adds
-    // its entries' terms in entry order: the additions the sequential loop below makes, in its order.
-    std::vector<Rgb> means(2 * links.pairs.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, links.pairs.size(), 256),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                          const LeafLinks::Pair& e = links.pairs[k];
-                          means[2 * k] = mean(e.q_first, e.q_count);
-                          means[2 * k + 1] = mean(e.p_first, e.p_count);
-                        }
-                      });
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, h.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-      for (std::size_t n = range.begin(); n != range.end(); ++n) {
-        Rgb sum = Rgb::Zero();
-        for (std::uint64_t j = links.leaf_offsets[n]; j < links.leaf_offsets[n + 1]; ++j) {
-          const std::uint32_t i = links.by_leaf[j];
-          sum += links.factor[i] * means[links.other_side[i]];
-        }
-        h.node(static_cast<NodeId>(n)).gathered = sum;
-      }
-    });
-    return;
-  }
-  for (std::size_t i = 0; i < h.size(); ++i) h.node(static_cast<NodeId>(i)).gathered = Rgb::Zero();
-  for (const LeafLinks::Pair& e : links.pairs) {
-    const Rgb b_q = mean(e.q_first, e.q_count);
-    const Rgb b_p = mean(e.p_first, e.p_count);
-    for (std::size_t k = e.p_first; k < e.p_first + e.p_count; ++k) h.node(links.leaf[k]).gathered += links.factor[k] * b_q;
-    for (std::size_t k = e.q_first; k < e.q_first + e.q_count; ++k) h.node(links.leaf[k]).gathered += links.factor[k] * b_p;
-  }
+  // Each side's mean once (index 2 k: pair k's q side, 2 k + 1: its p side), then each leaf adds
+  // its terms in entry order: the same bits as a sequential loop over pairs, at any thread count.
+  std::vector<Rgb> means(2 * links.pairs.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, links.pairs.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        const LeafLinks::Pair& e = links.pairs[k];
+                        means[2 * k] = mean(e.q_first, e.q_count);
+                        means[2 * k + 1] = mean(e.p_first, e.p_count);
+                      }
+                    });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, h.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t n = range.begin(); n != range.end(); ++n) {
+      Rgb sum = Rgb::Zero();
+      for (std::uint64_t j = links.leaf_offsets[n]; j < links.leaf_offsets[n + 1]; ++j)
+        sum += links.factor[j] * means[links.other_side[j]];
+      h.node(static_cast<NodeId>(n)).gathered = sum;
+    }
+  });
 }
 
 }  // namespace hrad::detail

@@ -20,7 +20,12 @@
 // rule, since Lambert's formula is exact at each point) and its columns carry A_M f(M -> p)
 // (reciprocity per leaf, so power balances exactly). A side that is a leaf keeps the exact
 // analytic factor. Cost: one term per (leaf, link of the leaf or of an ancestor), computed once
-// per refinement in parallel, and two passes over them per iteration.
+// per refinement in parallel, and two passes over them per iteration. A leaf far from the other
+// side against its size takes its factor at its centroid (receiver_factor_by_distance()); the
+// gather reads the factors grouped by leaf, in sequence. On the Cornell box at aeps = total/33333
+// (17057 elements, 75.6 M terms, 2 cores) these and huge pages took the leaf factors from 34.6 to
+// 9.0 s and the 21 iterations from 17.4 to 2.5 s (61.9 -> 20.6 s in all); the relative L2 error
+// against the sweep's reference stayed 1.371% (element field) and 1.097% (displayed).
 #pragma once
 
 #include <cstddef>
@@ -28,27 +33,29 @@
 #include <span>
 #include <vector>
 
+#include "hrad/core/huge_page_allocator.h"
 #include "hrad/mesh/element_hierarchy.h"
 #include "hrad/solvers/hierarchical_refine.h"
 
 namespace hrad::detail {
 
 /// The link pairs resolved to leaves. Pair k's p side is entries [pairs[k].p_first, + p_count),
-/// its q side [q_first, + q_count).
+/// its q side [q_first, + q_count); `leaf` and `weight` are in this entry order (each side's mean
+/// reads them). The factors are stored grouped by leaf for the gather, which then reads them in
+/// sequence: leaf n's are [leaf_offsets[n], leaf_offsets[n + 1]) of `factor` and `other_side`,
+/// in increasing entry order. 24 bytes per entry plus 8 per node.
 struct LeafLinks {
   struct Pair {
     std::size_t p_first = 0, p_count = 0, q_first = 0, q_count = 0;
   };
   std::vector<Pair> pairs;
-  std::vector<NodeId> leaf;    ///< the leaf of each entry
-  std::vector<double> factor;  ///< f(leaf -> the other side's node), visible fraction included
-  std::vector<double> weight;  ///< A_leaf f / (A_p F(p -> q)): the leaf's share of its side's exchange
-  /// For the parallel gather: the entries grouped by leaf (counting sort by leaf id, entries in
-  /// increasing order within a leaf) and, per entry, which side's mean it gathers (2 k for pair k's
-  /// q side, 2 k + 1 for its p side). 8 bytes per entry plus 8 per node.
+  BigVector<NodeId> leaf;    ///< the leaf of each entry
+  BigVector<double> weight;  ///< A_leaf f / (A_p F(p -> q)): the leaf's share of its side's exchange
   std::vector<std::uint64_t> leaf_offsets;
-  std::vector<std::uint32_t> by_leaf;
-  std::vector<std::uint32_t> other_side;
+  /// By leaf: f(leaf -> the other side's node), visible fraction included, and which side's mean
+  /// it gathers (2 k for pair k's q side, 2 k + 1 for its p side).
+  BigVector<double> factor;
+  BigVector<std::uint32_t> other_side;
   std::size_t size() const { return leaf.size(); }
 };
 
