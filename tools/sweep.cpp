@@ -1,11 +1,12 @@
 // hrad sweep SCENE --out DIR [--quick] [--reference-elements N] [--samples N] [--target-error E] [--threads N]
 //
 // What accuracy costs in time. Runs each method over its accuracy parameter, from coarse to fine:
-//   full          element size (max_area = total area / n, n = 64 .. 1024)
+//   full          element size (max_area = total area / n, n = 64 .. 9000), Gauss-Seidel
 //   substructure  element size (the same n, input polygons shoot) and shooting-patch size
-//   hierarchical  feps (0.3 .. 0.001, aeps automatic) and aeps (1e-2 .. 1e-4 of the total area)
-// and judges every run against one reference (a full-matrix LU solve on a finer mesh, 4 x the
-// finest full run unless --reference-elements) on fixed samples on every surface. Writes:
+//   hierarchical  feps (0.3 .. 0.001, aeps automatic) and aeps (1e-2 .. 1.5e-5 of the total area)
+// and judges every run against one reference (a full-matrix LU solve, 4 x the finest full run and at
+// most 4096 elements unless --reference-elements, final-gathered at the error samples) on fixed
+// samples on every surface. Writes:
 //   DIR/sweep.csv       one row per run: method, parameter, value, elements, links,
 //                       form_factor_evaluations, visibility_queries, seconds, error_l2, error_linf, ...
 //   DIR/reference.json  how the reference was made
@@ -63,7 +64,7 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--out", args->out, "Output folder")->required();
   cmd->add_flag("--quick", args->quick, "Three small settings per parameter (for tests)");
   cmd->add_option("--reference-elements", args->reference_elements,
-                  "Elements of the reference mesh (default 4 x the finest full run)");
+                  "Elements of the reference mesh (default 4 x the finest full run, at most 4096)");
   cmd->add_option("--samples", args->samples, "Error samples per patch (default 256)");
   cmd->add_option("--target-error", args->target_error, "Relative L2 error for the time-to-error ratio (default 0.01)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
@@ -106,9 +107,8 @@ void add_sweep_command(CLI::App& app) {
     options.visibility_samples = args->visibility_samples;
     options.progress = show_progress;
 
-    std::cerr << fmt::format("sweep: reference ({} elements, full matrix, LU)...\n",
-                             options.reference_elements > 0 ? options.reference_elements
-                                                            : 4 * options.element_counts.back());
+    std::cerr << fmt::format("sweep: reference ({:g} elements aimed at, full matrix, LU)...\n",
+                             reference_elements_aimed(options));
     const Reference reference = make_reference(scene, options);
     std::cerr << fmt::format("sweep: reference took {:.2f} s\n", reference.summary.total_seconds);
     const std::vector<SweepRow> rows = run_sweep(scene, reference, options);

@@ -25,11 +25,13 @@ SolveOptions base_options(Method method, const SweepOptions& sweep) {
   return o;
 }
 
-double finest_full_count(const SweepOptions& options) {
-  return *std::max_element(options.element_counts.begin(), options.element_counts.end());
-}
-
 }  // namespace
+
+double reference_elements_aimed(const SweepOptions& options) {
+  if (options.reference_elements > 0) return options.reference_elements;
+  const double finest = 4.0 * *std::max_element(options.element_counts.begin(), options.element_counts.end());
+  return options.final_gather ? std::min(finest, kFinalGatherReferenceElements) : finest;
+}
 
 Solution reflected_part(const Scene& scene, Solution solution) {
   for (std::size_t f = 0; f < solution.faces.size(); ++f)
@@ -57,6 +59,7 @@ std::vector<std::pair<Method, SweepSetting>> sweep_settings(const Scene& scene, 
   for (double n : options.element_counts) {
     SolveOptions o = base_options(Method::kFull, options);
     o.max_area = area / n;
+    o.linear_solver = options.full_linear_solver;
     add(Method::kFull, "max_area", o.max_area, o);
   }
   for (double n : options.element_counts) {
@@ -87,7 +90,7 @@ std::vector<std::pair<Method, SweepSetting>> sweep_settings(const Scene& scene, 
 }
 
 Reference make_reference(const Scene& scene, const SweepOptions& options) {
-  const double n = options.reference_elements > 0 ? options.reference_elements : 4.0 * finest_full_count(options);
+  const double n = reference_elements_aimed(options);
   SolveOptions o = base_options(Method::kFull, options);
   o.max_area = scene.total_area() / n;
   o.linear_solver = LinearSolver::kLu;
@@ -115,6 +118,7 @@ Reference make_reference(const Scene& scene, const SweepOptions& options) {
       {"linear_solver", "lu"},
       {"why", "a direct solve on a uniform mesh finer than any run of the sweep: it shares the exact kernels "
               "with the runs but none of their discretisations or iterations"},
+      {"elements_aimed_at", n},
       {"max_area", o.max_area},
       {"visibility_samples", o.visibility_samples},
       {"elements", ref.summary.elements},
@@ -194,7 +198,16 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
       options.progress(done, static_cast<int>(settings.size()),
                        fmt::format("{} {}={:.4g}", to_string(method), setting.parameter, setting.value));
     Solution solution;
-    const SolveSummary s = solve(scene, setting.options, &solution);
+    SolveSummary s;
+    try {
+      s = solve(scene, setting.options, &solution);
+    } catch (const Error& e) {
+      ++done;
+      if (options.progress)
+        options.progress(done, static_cast<int>(settings.size()),
+                         fmt::format("skipped {} {}={:.4g}: {}", to_string(method), setting.parameter, setting.value, e.what()));
+      continue;
+    }
     const Solution reflected = reflected_part(scene, std::move(solution));
     const ErrorMetrics e = judge(scene, reflected, reference, lookup, options.samples_per_patch, Field::constant);
     const ErrorMetrics smooth = judge(scene, reflected, reference, lookup, options.samples_per_patch, Field::interpolated);
