@@ -9,6 +9,8 @@
 #include <cstddef>
 #include <cstdlib>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #if defined(__linux__)
@@ -52,13 +54,25 @@ struct HugePageAllocator {
     ::operator delete(p);
   }
 
+  /// Default-initialises: a BigVector's resize(n) leaves trivial elements unwritten (the caller
+  /// writes each once), so its pages are touched once, not zeroed and then written.
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+
   template <class U>
   bool operator==(const HugePageAllocator<U>&) const noexcept {
     return true;
   }
 };
 
-/// A vector for arrays that may reach GB.
+/// A vector for arrays that may reach GB. resize() and the size constructor leave trivial elements
+/// uninitialised; pass a value to fill.
 template <class T>
 using BigVector = std::vector<T, HugePageAllocator<T>>;
 
