@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -85,6 +87,77 @@ TEST(CliSolve, SameBytesRunAfterRunAndWhateverTheThreadCount) {
     EXPECT_TRUE(a == slurp(dir.path("b.ply"))) << method << ": 1 and 2 threads differ";
     EXPECT_TRUE(a == slurp(dir.path("c.ply"))) << method << ": two runs differ";
   }
+}
+
+TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
+  // The quick sweep end to end on the simple room (a table shadows the floor): every file of the
+  // interface, one CSV row per setting, and error that falls as each method's mesh gets finer.
+  TempDir dir;
+  const std::string out = dir.path("sweep");
+  // (16 samples per patch alias with the element grid here: the full matrix's error then rose
+  // from 102 to 306 elements; the default 256 do not.)
+  const RunResult r = run_hrad("sweep notebooks_data/scenes/simple_room.obj --quick --out " + out, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("reference"), std::string::npos) << r.err;  // progress on stderr
+
+  std::istringstream csv(slurp(out + "/sweep.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line,
+            "method,parameter,value,elements,links,form_factor_evaluations,visibility_queries,seconds,error_l2,error_linf,"
+            "iterations,termination,error_l2_smooth,error_linf_smooth");
+  struct Row {
+    std::string method, parameter;
+    double elements, links, error_l2, error_l2_smooth;
+  };
+  std::vector<Row> rows;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> cells;
+    std::istringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 14u) << line;
+    rows.push_back({cells[0], cells[1], std::stod(cells[3]), std::stod(cells[4]), std::stod(cells[8]), std::stod(cells[12])});
+    EXPECT_GT(rows.back().error_l2, 0.0) << line;
+    EXPECT_LT(rows.back().error_l2, 1.0) << line;
+  }
+  // --quick: 3 element counts for full and substructuring, 3 patch counts, 3 feps and 3 aeps.
+  ASSERT_EQ(rows.size(), 15u);
+  auto runs = [&](const std::string& method, const std::string& parameter) {
+    std::vector<Row> v;
+    for (const Row& row : rows)
+      if (row.method == method && row.parameter == parameter) v.push_back(row);
+    return v;
+  };
+  const auto full = runs("full", "max_area"), aeps = runs("hierarchical", "aeps");
+  ASSERT_EQ(full.size(), 3u);
+  ASSERT_EQ(aeps.size(), 3u);
+  EXPECT_EQ(runs("substructure", "max_area").size(), 3u);
+  EXPECT_EQ(runs("substructure", "patch_area").size(), 3u);
+  EXPECT_EQ(runs("hierarchical", "feps").size(), 3u);
+  for (const Row& row : full) EXPECT_EQ(row.links, row.elements * row.elements);
+  EXPECT_LT(full.front().elements, full.back().elements);
+  EXPECT_LT(full.back().error_l2, full.front().error_l2);
+  EXPECT_LT(full.back().error_l2_smooth, full.front().error_l2_smooth);
+  EXPECT_LT(aeps.back().error_l2, aeps.front().error_l2);
+
+  const auto ref = nlohmann::json::parse(slurp(out + "/reference.json"));
+  EXPECT_TRUE(ref.at("final_gather").get<bool>());
+  EXPECT_EQ(ref.at("elements_aimed_at").get<double>(), 4 * 128.0);  // 4 x the finest quick full run
+  EXPECT_GT(ref.at("elements").get<double>(), full.back().elements);
+  EXPECT_EQ(ref.at("scene"), "notebooks_data/scenes/simple_room.obj");
+
+  const auto fit = nlohmann::json::parse(slurp(out + "/fit.json"));
+  for (const char* method : {"full", "substructure", "hierarchical"})
+    EXPECT_TRUE(fit.at("methods").at(method).at("time_to_target_error").contains("reached")) << method;
+  // (substructuring's element counts collide here, 102 twice: fewer than 3 distinct, no fit)
+  for (const char* method : {"full", "hierarchical"})
+    EXPECT_TRUE(fit["methods"][method].at("time_vs_elements").contains("b")) << method;
+  EXPECT_NEAR(fit["methods"]["full"]["links_vs_elements"]["b"].get<double>(), 2.0, 1e-6);  // n^2 links
+  EXPECT_TRUE(fit["methods"]["hierarchical"].at("error_vs_feps").contains("b"));
+  EXPECT_TRUE(fit.contains("speedup"));
+
+  EXPECT_EQ(slurp(out + "/pareto.png").substr(0, 8), "\x89PNG\r\n\x1a\n");
+  EXPECT_NE(slurp(out + "/command.txt").find("--quick"), std::string::npos);
 }
 
 }  // namespace

@@ -74,7 +74,7 @@ struct SweepOptions {
   /// Hierarchical form-factor tolerances (aeps automatic) and smallest-area fractions of the total area
   /// (feps at its default).
   std::vector<double> feps_values = {0.3, 0.1, 0.03, 0.01, 0.003, 0.001};
-  std::vector<double> aeps_fractions = {1e-2, 1e-3, 1e-4, 5e-5, 3e-5, 2e-5, 1.5e-5};
+  std::vector<double> aeps_fractions = {1e-2, 1e-3, 1e-4, 5e-5, 3e-5, 2.5e-5, 2e-5, 1.5e-5};
   int samples_per_patch = 256;
   /// Visibility point pairs per partly visible pair in every run (0 = the solvers' default); the
   /// reference uses four times as many.
