@@ -14,6 +14,9 @@
 namespace hrad::detail {
 namespace {
 
+// A_p F(p -> q) = A_q F(q -> p) (the analytic kernel is reciprocal to rounding).
+double exchange_of(const ElementHierarchy& h, const LinkPair& pair) { return h.node(pair.p).area * pair.estimate.value; }
+
 // Leaves this small against their distance to the link's other side take the one-point rule
 // (receiver_factor_by_distance()).
 constexpr double kLeafCentroidRatio = 0.1;
@@ -82,8 +85,7 @@ LeafLinks leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs)
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const LinkPair& pair = pairs[i];
       const LeafLinks::Pair& e = out.pairs[i];
-      // A_p F(p -> q) = A_q F(q -> p) (the analytic kernel is reciprocal to rounding).
-      const double exchange = h.node(pair.p).area * pair.estimate.value;
+      const double exchange = exchange_of(h, pair);
       resolve(pair.p, pair.q, pair.estimate.value, exchange, e.p_first, uniform[2 * i]);
       resolve(pair.q, pair.p, pair.estimate.reverse, exchange, e.q_first, uniform[2 * i + 1]);
     }
@@ -98,8 +100,8 @@ LeafLinks leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs)
   for (std::size_t k = 0; k < out.pairs.size(); ++k) {
     const LeafLinks::Pair& e = out.pairs[k];
     for (std::size_t side = 0; side < 2; ++side) {
-      const std::size_t first = side == 0 ? e.p_first : e.q_first, count = side == 0 ? e.p_count : e.q_count;
-      for (std::size_t i = first; i < first + count; ++i) {
+      const auto [first, end] = e.side(side);
+      for (std::size_t i = first; i < end; ++i) {
         const std::uint64_t to = cursor[static_cast<std::size_t>(out.leaf[i])]++;
         out.factor[to] = out.weight[i];
         out.other_side[to] = static_cast<std::uint32_t>(2 * k + side);  // p entries gather q's mean
@@ -112,11 +114,11 @@ LeafLinks leaf_links(const ElementHierarchy& h, std::span<const LinkPair> pairs)
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const LinkPair& pair = pairs[i];
       const LeafLinks::Pair& e = out.pairs[i];
-      const double exchange = h.node(pair.p).area * pair.estimate.value;
+      const double exchange = exchange_of(h, pair);
       for (std::size_t side = 0; side < 2; ++side) {
-        const std::size_t first = side == 0 ? e.p_first : e.q_first, count = side == 0 ? e.p_count : e.q_count;
+        const auto [first, end] = e.side(side);
         const double side_area = h.node(side == 0 ? pair.p : pair.q).area;
-        for (std::size_t k = first; k < first + count; ++k) {
+        for (std::size_t k = first; k < end; ++k) {
           const double area = h.node(out.leaf[k]).area;
           out.weight[k] = uniform[2 * i + side] ? area / side_area : area * out.weight[k] / exchange;
         }

@@ -31,6 +31,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "hrad/core/huge_page_allocator.h"
@@ -47,6 +48,10 @@ namespace hrad::detail {
 struct LeafLinks {
   struct Pair {
     std::size_t p_first = 0, p_count = 0, q_first = 0, q_count = 0;
+    /// Side 0 (p) or 1 (q) as [first, end).
+    std::pair<std::size_t, std::size_t> side(std::size_t s) const {
+      return s == 0 ? std::pair{p_first, p_first + p_count} : std::pair{q_first, q_first + q_count};
+    }
   };
   std::vector<Pair> pairs;
   BigVector<NodeId> leaf;    ///< the leaf of each entry
