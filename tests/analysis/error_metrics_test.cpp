@@ -52,7 +52,7 @@ TEST(PatchSamples, WeightsAddUpToTheArea) {
   s.materials.push_back(Material{});
   s.patches.push_back(make_patch({Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(3, 2, 0), Vec3(0.5, 2, 0)}));  // trapezoid: (4 + 2.5) / 2 * 2 = 6.5
   s.patches.push_back(make_patch({Vec3(0, 0, 1), Vec3(3, 0, 1), Vec3(0, 0, 5)}));                   // triangle, 6
-  const std::vector<SurfaceSample> samples = patch_samples(s, 100);
+  const std::vector<SurfaceSample> samples = patch_samples(s, 100, SampleLayout::centres);
   ASSERT_EQ(samples.size(), 200u);
   double a0 = 0.0, a1 = 0.0;
   Vec3 c1 = Vec3::Zero();
@@ -64,6 +64,65 @@ TEST(PatchSamples, WeightsAddUpToTheArea) {
   EXPECT_NEAR(a1, 6.0, 1e-12);
   // The triangle's samples are centroids of congruent pieces: their mean is the centroid (1, 0, 7/3).
   EXPECT_NEAR((c1 / a1 - Vec3(1, 0, 7.0 / 3)).norm(), 0.0, 1e-12);
+  // Jittered: the same weights, one point inside each cell, the same set on every call.
+  const std::vector<SurfaceSample> jittered = patch_samples(s, 100);
+  ASSERT_EQ(jittered.size(), samples.size());
+  const std::vector<SurfaceSample> again = patch_samples(s, 100);
+  int moved = 0;
+  for (std::size_t k = 0; k < jittered.size(); ++k) {
+    EXPECT_EQ(jittered[k].area, samples[k].area);
+    EXPECT_EQ(jittered[k].position, again[k].position);
+    moved += (jittered[k].position - samples[k].position).norm() > 1e-6;
+  }
+  EXPECT_GT(moved, 190);
+  // Quad cells: cell (i, j) of the trapezoid's bilinear map; its sample maps back into it.
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 10; ++i) {
+      const Vec3& x = jittered[static_cast<std::size_t>(j * 10 + i)].position;
+      const double v = x.y() / 2.0;                             // y = 2 v on this trapezoid
+      const double left = 0.5 * v, right = 4.0 - v;           // x(u) between the slanted sides
+      const double u = (x.x() - left) / (right - left);
+      EXPECT_GE(u, i / 10.0 - 1e-12);
+      EXPECT_LE(u, (i + 1) / 10.0 + 1e-12);
+      EXPECT_GE(v, j / 10.0 - 1e-12);
+      EXPECT_LE(v, (j + 1) / 10.0 + 1e-12);
+    }
+}
+
+// The reason for jittered samples. Reference B = x on the unit square, solution: a g x g grid of
+// leaves, each holding the exact average of B over it (the best a constant element can do). The
+// continuous relative L2 error is sqrt((h^2 / 12) / (1/3)) = h / 2 with h = 1/g. The 16 x 16 cell
+// centres see it as 0 on the 16 x 16 grid (each centre is a leaf's centre) and as sqrt(3) h / 2,
+// 1.7x too large, on the 32 x 32 grid (each centre lies on a leaf edge); the jittered samples
+// measure h / 2 on both, within their sampling error.
+Solution grid_of_averages(int g) {
+  Solution s;
+  for (int j = 0; j <= g; ++j)
+    for (int i = 0; i <= g; ++i) s.vertices.emplace_back(double(i) / g, double(j) / g, 0.0);
+  s.vertex_radiosity.assign(s.vertices.size(), Rgb::Zero());
+  for (int j = 0; j < g; ++j)
+    for (int i = 0; i < g; ++i) {
+      const int a = j * (g + 1) + i;
+      s.faces.push_back({a, a + 1, a + g + 2, a + g + 1});
+      s.face_patch.push_back(0);
+      s.face_radiosity.push_back(Rgb::Constant((i + 0.5) / g));
+    }
+  return s;
+}
+
+TEST(ErrorMetrics, JitteredSamplesDoNotAliasWithQuadtreeLeaves) {
+  const Scene scene = unit_square_scene();
+  const auto b_is_x = [](const Vec3& x, int) { return Rgb::Constant(x.x()); };
+  for (const int g : {16, 32}) {
+    const Solution s = grid_of_averages(g);
+    const double exact = 0.5 / g;
+    const double centres = compare_to_function(scene, s, b_is_x, 256, Emitters::include, Field::constant,
+                                               SampleLayout::centres).relative_l2;
+    const double jittered = compare_to_function(scene, s, b_is_x, 256).relative_l2;
+    EXPECT_NEAR(jittered, exact, 0.1 * exact) << g;
+    if (g == 16) EXPECT_LT(centres, 1e-12);
+    if (g == 32) EXPECT_GT(centres, 1.6 * exact);
+  }
 }
 
 TEST(ErrorMetrics, SolutionAgainstItselfIsZero) {
@@ -138,7 +197,8 @@ TEST(ErrorMetrics, AnalyticReferenceMatchesTheMidpointRule) {
   // close to the continuous 1/2.
   const Scene scene = unit_square_scene();
   const ErrorMetrics m = compare_to_function(scene, whole_square(Rgb::Constant(0.5)),
-                                             [](const Vec3& x, int) { return Rgb::Constant(x.x()); }, 256);
+                                             [](const Vec3& x, int) { return Rgb::Constant(x.x()); }, 256,
+                                             Emitters::include, Field::constant, SampleLayout::centres);
   const double h2 = 1.0 / 256;
   EXPECT_NEAR(m.relative_l2, std::sqrt((1.0 / 12 - h2 / 12) / (1.0 / 3 - h2 / 12)), 1e-12);
   EXPECT_NEAR(m.relative_l2, 0.5, 2e-3);
@@ -263,8 +323,8 @@ TEST(ErrorMetrics, InterpolatedFieldAgainstAConstantByHand) {
   Solution s = whole_square(Rgb::Constant(0.5));
   s.vertex_radiosity = {Rgb::Zero(), Rgb::Zero(), Rgb::Ones(), Rgb::Ones()};
   const int m = 16;
-  const ErrorMetrics e = compare_to_function(
-      scene, s, [](const Vec3&, int) { return Rgb::Constant(0.5); }, m * m, Emitters::include, Field::interpolated);
+  const ErrorMetrics e = compare_to_function(scene, s, [](const Vec3&, int) { return Rgb::Constant(0.5); }, m * m,
+                                             Emitters::include, Field::interpolated, SampleLayout::centres);
   EXPECT_NEAR(e.relative_l2, std::sqrt((m * m - 1.0) / (12.0 * m * m)) / 0.5, 1e-12);
   EXPECT_NEAR(e.relative_linf, (0.5 - 0.5 / m) / 0.5, 1e-12);
   EXPECT_EQ(compare_to_function(scene, s, [](const Vec3&, int) { return Rgb::Constant(0.5); }, m * m).relative_l2, 0.0);

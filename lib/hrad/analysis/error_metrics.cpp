@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "hrad/core/rng.h"
 #include "hrad/render/face_geometry.h"
 
 namespace hrad {
@@ -14,19 +15,36 @@ double ratio(double num, double den) {
   return num > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
 }
 
-void sample_triangle(const Vec3& a, const Vec3& b, const Vec3& c, int m, int patch, std::vector<SurfaceSample>* out) {
+// The point of stratum `stratum` of patch `patch`: its centre, or a uniform point in it drawn from
+// a stream fixed by (patch, stratum).
+Vec2 stratum_point(SampleLayout layout, int patch, std::uint64_t stratum) {
+  if (layout == SampleLayout::centres) return Vec2(0.5, 0.5);
+  detail::Rng rng((static_cast<std::uint64_t>(patch) << 32) ^ (stratum * 0x9e3779b97f4a7c15ULL));
+  const double a = rng.uniform();
+  return Vec2(a, rng.uniform());
+}
+
+void sample_triangle(const Vec3& a, const Vec3& b, const Vec3& c, int m, int patch, SampleLayout layout,
+                     std::size_t first, std::vector<SurfaceSample>* out) {
   const double area = 0.5 * (b - a).cross(c - a).norm() / (static_cast<double>(m) * m);
   auto grid = [&](int i, int j) { return Vec3(a + (static_cast<double>(i) / m) * (b - a) + (static_cast<double>(j) / m) * (c - a)); };
+  // A point of triangle (p, q, r): its centroid, or a uniform one (Turk 1990's square-root map).
+  auto point = [&](const Vec3& p, const Vec3& q, const Vec3& r) {
+    if (layout == SampleLayout::centres) return Vec3((p + q + r) / 3.0);
+    const Vec2 st = stratum_point(layout, patch, out->size() - first);
+    const double su = std::sqrt(st.x());
+    return Vec3((1.0 - su) * p + su * (1.0 - st.y()) * q + su * st.y() * r);
+  };
   for (int j = 0; j < m; ++j)
     for (int i = 0; i + j < m; ++i) {
-      out->push_back({(grid(i, j) + grid(i + 1, j) + grid(i, j + 1)) / 3.0, area, patch});
-      if (i + j + 2 <= m) out->push_back({(grid(i + 1, j) + grid(i + 1, j + 1) + grid(i, j + 1)) / 3.0, area, patch});
+      out->push_back({point(grid(i, j), grid(i + 1, j), grid(i, j + 1)), area, patch});
+      if (i + j + 2 <= m) out->push_back({point(grid(i + 1, j), grid(i + 1, j + 1), grid(i, j + 1)), area, patch});
     }
 }
 
 }  // namespace
 
-std::vector<SurfaceSample> patch_samples(const Scene& scene, int samples_per_patch) {
+std::vector<SurfaceSample> patch_samples(const Scene& scene, int samples_per_patch, SampleLayout layout) {
   const int m = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(samples_per_patch)))));
   std::vector<SurfaceSample> out;
   for (std::size_t p = 0; p < scene.patches.size(); ++p) {
@@ -35,14 +53,18 @@ std::vector<SurfaceSample> patch_samples(const Scene& scene, int samples_per_pat
     if (v.size() == 4) {
       for (int j = 0; j < m; ++j)
         for (int i = 0; i < m; ++i) {
-          const double u = (i + 0.5) / m, w = (j + 0.5) / m;
+          // The weight is the cell's area: the Jacobian at its centre (linear in u and v).
+          const double uc = (i + 0.5) / m, wc = (j + 0.5) / m;
+          const Vec3 xu = (1 - wc) * (v[1] - v[0]) + wc * (v[2] - v[3]);
+          const Vec3 xv = (1 - uc) * (v[3] - v[0]) + uc * (v[2] - v[1]);
+          const Vec2 st = stratum_point(layout, patch, static_cast<std::uint64_t>(j) * m + i);
+          const double u = (i + st.x()) / m, w = (j + st.y()) / m;
           const Vec3 x = (1 - u) * (1 - w) * v[0] + u * (1 - w) * v[1] + u * w * v[2] + (1 - u) * w * v[3];
-          const Vec3 xu = (1 - w) * (v[1] - v[0]) + w * (v[2] - v[3]);
-          const Vec3 xv = (1 - u) * (v[3] - v[0]) + u * (v[2] - v[1]);
           out.push_back({x, xu.cross(xv).norm() / (static_cast<double>(m) * m), patch});
         }
     } else {
-      for (std::size_t k = 1; k + 1 < v.size(); ++k) sample_triangle(v[0], v[k], v[k + 1], m, patch, &out);
+      const std::size_t first = out.size();
+      for (std::size_t k = 1; k + 1 < v.size(); ++k) sample_triangle(v[0], v[k], v[k + 1], m, patch, layout, first, &out);
     }
   }
   return out;
@@ -168,11 +190,11 @@ Rgb SolutionSampler::interpolated(int face, const Vec3& x) const {
 
 ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
                                  const std::function<Rgb(const Vec3&, int)>& reference, int samples_per_patch,
-                                 Emitters emitters, Field field) {
+                                 Emitters emitters, Field field, SampleLayout layout) {
   auto skipped = [&](int patch) {
     return emitters == Emitters::exclude && scene.material_of(scene.patches[patch]).is_emitter();
   };
-  std::vector<SurfaceSample> samples = patch_samples(scene, samples_per_patch);
+  std::vector<SurfaceSample> samples = patch_samples(scene, samples_per_patch, layout);
   std::erase_if(samples, [&](const SurfaceSample& s) { return skipped(s.patch); });
   const SolutionSampler sampler(scene, solution);
   ErrorMetrics m;
@@ -227,7 +249,7 @@ ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
 }
 
 ErrorMetrics compare_solutions(const Scene& scene, const Solution& solution, const Solution& reference,
-                               int samples_per_patch, Emitters emitters, Field field) {
+                               int samples_per_patch, Emitters emitters, Field field, SampleLayout layout) {
   const SolutionSampler ref_sampler(scene, reference);
   std::size_t ref_unmatched = 0;
   ErrorMetrics m = compare_to_function(
@@ -238,7 +260,7 @@ ErrorMetrics compare_solutions(const Scene& scene, const Solution& solution, con
         if (!matched) ++ref_unmatched;
         return r;
       },
-      samples_per_patch, emitters, field);
+      samples_per_patch, emitters, field, layout);
   m.unmatched += ref_unmatched;
   return m;
 }
