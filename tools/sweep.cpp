@@ -1,4 +1,5 @@
-// hrad sweep SCENE --out DIR [--quick] [--reference-elements N] [--samples N] [--target-error E] [--threads N]
+// hrad sweep SCENE --out DIR [--quick] [--reference-elements N | --reference-from DIR] [--samples N]
+//            [--target-error E] [--threads N]
 //
 // What accuracy costs in time. Runs each method over its accuracy parameter, from coarse to fine:
 //   full          element size (max_area = total area / n, n = 64 .. 9000), Gauss-Seidel
@@ -10,6 +11,8 @@
 //   DIR/sweep.csv       one row per run: method, parameter, value, elements, links,
 //                       form_factor_evaluations, visibility_queries, seconds, error_l2, error_linf, ...
 //   DIR/reference.json  how the reference was made
+//   DIR/reference_samples.json  the reference's final gather at the error samples; --reference-from
+//                       DIR reads it back (with reference.json) instead of solving the reference again
 //   DIR/fit.json        Ceres fits: seconds ~ a n^b and links ~ c n^alpha per method, error ~ k feps^beta
 //                       for hierarchical; the time each method needs to reach --target-error (default 1%)
 //                       and the full/hierarchical ratio
@@ -27,6 +30,7 @@
 #include "comma_numbers.h"
 #include "commands.h"
 #include "hrad/core/error.h"
+#include "hrad/experiments/reference_samples.h"
 #include "hrad/experiments/sweep.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/obj_reader.h"
@@ -56,7 +60,7 @@ void add_sweep_command(CLI::App& app) {
     bool quick = false;
     double reference_elements = 0.0, target_error = 0.01;
     int samples = 256, threads = 0;
-    std::string elements, patches, feps, aeps;
+    std::string elements, patches, feps, aeps, reference_from;
     int visibility_samples = 0;
   };
   auto args = std::make_shared<Args>();
@@ -65,6 +69,8 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_flag("--quick", args->quick, "Three small settings per parameter (for tests)");
   cmd->add_option("--reference-elements", args->reference_elements,
                   "Elements of the reference mesh (default 4 x the finest full run, at most 4096)");
+  cmd->add_option("--reference-from", args->reference_from,
+                  "Reuse the reference of an earlier sweep of this scene (its output folder)");
   cmd->add_option("--samples", args->samples, "Error samples per patch (default 256)");
   cmd->add_option("--target-error", args->target_error, "Relative L2 error for the time-to-error ratio (default 0.01)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
@@ -79,6 +85,8 @@ void add_sweep_command(CLI::App& app) {
     if (!(args->target_error > 0 && args->target_error < 1)) throw Error(fmt::format("--target-error must be in (0, 1), got {}", args->target_error));
     if (!(args->reference_elements >= 0 && args->reference_elements <= 1e6))
       throw Error(fmt::format("--reference-elements must be in [0, 1e6], got {}", args->reference_elements));
+    if (!args->reference_from.empty() && args->reference_elements > 0)
+      throw Error("--reference-from and --reference-elements exclude each other (the reference is read, not solved)");
     if (args->threads < 0) throw Error(fmt::format("--threads must be >= 0, got {}", args->threads));
     if (args->visibility_samples < 0 || args->visibility_samples > 65536)
       throw Error(fmt::format("--visibility-samples must be in [0, 65536], got {}", args->visibility_samples));
@@ -107,10 +115,16 @@ void add_sweep_command(CLI::App& app) {
     options.visibility_samples = args->visibility_samples;
     options.progress = show_progress;
 
-    std::cerr << fmt::format("sweep: reference ({:g} elements aimed at, full matrix, LU)...\n",
-                             reference_elements_aimed(options));
-    const Reference reference = make_reference(scene, options);
-    std::cerr << fmt::format("sweep: reference took {:.2f} s\n", reference.summary.total_seconds);
+    Reference reference;
+    if (!args->reference_from.empty()) {
+      reference = read_reference_samples(args->reference_from, scene, options.samples_per_patch);
+      std::cerr << fmt::format("sweep: reference from {} ({} samples)\n", args->reference_from, reference.gathered.size());
+    } else {
+      std::cerr << fmt::format("sweep: reference ({:g} elements aimed at, full matrix, LU)...\n",
+                               reference_elements_aimed(options));
+      reference = make_reference(scene, options);
+      std::cerr << fmt::format("sweep: reference took {:.2f} s\n", reference.summary.total_seconds);
+    }
     const std::vector<SweepRow> rows = run_sweep(scene, reference, options);
     const nlohmann::json fits = sweep_fits(rows, args->target_error);
 
@@ -119,10 +133,15 @@ void add_sweep_command(CLI::App& app) {
     nlohmann::json ref = reference.description;
     ref["scene"] = args->scene;
     write_json_file(dir + "/reference.json", ref);
+    if (!reference.gathered.empty())
+      write_file_atomically(dir + "/reference_samples.json", [&](std::ostream& o) {
+        write_reference_samples(o, scene, reference, options.samples_per_patch);
+      });
     write_json_file(dir + "/fit.json", fits);
     write_file_atomically(dir + "/command.txt", [&](std::ostream& o) {
       o << fmt::format("build/bin/hrad sweep {} --out {}{}{}", args->scene, dir, args->quick ? " --quick" : "",
                        args->reference_elements > 0 ? fmt::format(" --reference-elements {}", args->reference_elements) : "");
+      if (!args->reference_from.empty()) o << " --reference-from " << args->reference_from;
       for (const auto& [name, text] : {std::pair{"--elements", args->elements}, {"--patches", args->patches},
                                        {"--feps", args->feps}, {"--aeps", args->aeps}})
         if (!text.empty()) o << " " << name << " " << text;

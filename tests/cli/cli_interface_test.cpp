@@ -158,6 +158,46 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
 
   EXPECT_EQ(slurp(out + "/pareto.png").substr(0, 8), "\x89PNG\r\n\x1a\n");
   EXPECT_NE(slurp(out + "/command.txt").find("--quick"), std::string::npos);
+
+  // --reference-from: a second sweep with one setting per parameter reads the reference back
+  // instead of solving it, and judges the same runs to the same digits.
+  const std::string again = dir.path("again");
+  const RunResult r2 = run_hrad("sweep notebooks_data/scenes/simple_room.obj --quick --elements 128 --patches 20 "
+                                "--feps 0.3 --aeps 0.001 --reference-from " + out + " --out " + again, dir);
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  EXPECT_NE(r2.err.find("reference from"), std::string::npos) << r2.err;
+  EXPECT_EQ(r2.err.find("LU"), std::string::npos) << r2.err;
+  auto row_of = [](const std::string& csv_text, const std::string& prefix) {
+    std::istringstream in(csv_text);
+    for (std::string l; std::getline(in, l);)
+      if (l.rfind(prefix, 0) == 0) return l;
+    return std::string();
+  };
+  const std::string first = slurp(out + "/sweep.csv"), second = slurp(again + "/sweep.csv");
+  for (const std::string prefix : {"full,max_area,", "hierarchical,feps,0.3,", "hierarchical,aeps,"}) {
+    const std::string a = row_of(second, prefix);
+    ASSERT_FALSE(a.empty()) << prefix;
+    // The same setting in the first sweep: the same value, hence the same row but for the seconds.
+    const std::string value = a.substr(0, a.find(',', prefix.size()));
+    const std::string b = row_of(first, value + ",");
+    ASSERT_FALSE(b.empty()) << value;
+    auto without_seconds = [](const std::string& line) {
+      std::vector<std::string> cells;
+      std::istringstream in(line);
+      for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+      cells.erase(cells.begin() + 7);
+      return cells;
+    };
+    EXPECT_EQ(without_seconds(a), without_seconds(b)) << a << "\n" << b;
+  }
+  EXPECT_EQ(nlohmann::json::parse(slurp(again + "/reference.json")).at("reused_from"), out);
+  EXPECT_NE(slurp(again + "/command.txt").find("--reference-from"), std::string::npos);
+  // Another scene's samples are refused before anything runs, naming the file.
+  const RunResult wrong = run_hrad("sweep notebooks_data/scenes/cornell_box.obj --quick --reference-from " + out +
+                                   " --out " + dir.path("wrong"), dir);
+  EXPECT_NE(wrong.exit_code, 0);
+  EXPECT_NE(wrong.err.find(out + "/reference_samples.json: "), std::string::npos) << wrong.err;
+  EXPECT_NE(wrong.err.find("another scene"), std::string::npos) << wrong.err;
 }
 
 }  // namespace
