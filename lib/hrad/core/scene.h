@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hrad/core/types.h"
@@ -45,6 +46,8 @@ struct Scene {
 
   double total_area() const;
   int emitter_count() const;
+  /// Corners of the patches' axis-aligned bounding box (+inf / -inf when there are none).
+  std::pair<Vec3, Vec3> bounds() const;
   const Material& material_of(const Patch& p) const { return materials[p.material]; }
 };
 

@@ -1,6 +1,5 @@
 #include "hrad/experiments/reference_samples.h"
 
-#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -25,16 +24,6 @@ json read_json(const std::string& path) {
   } catch (const json::parse_error& e) {
     throw Error(fmt::format("{}: invalid JSON at byte {}", path, e.byte));
   }
-}
-
-double diameter(const Scene& scene) {
-  Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
-  for (const Patch& p : scene.patches)
-    for (const Vec3& v : p.vertices) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-  return scene.patches.empty() ? 1.0 : (hi - lo).norm();
 }
 
 }  // namespace
@@ -72,7 +61,8 @@ Reference read_reference_samples(const std::string& dir, const Scene& scene, int
   const json& rows = doc["samples"];
   if (rows.size() != samples.size())
     fail(fmt::format("{} samples, this scene has {}: another scene?", rows.size(), samples.size()));
-  const double tolerance = 1e-9 * diameter(scene);
+  const auto [lo, hi] = scene.bounds();
+  const double tolerance = 1e-9 * (hi - lo).norm();
   ref.gathered.resize(samples.size());
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const json& r = rows[i];

@@ -29,9 +29,7 @@ nlohmann::json scene_summary_json(const Scene& scene) {
   for (const Material& m : scene.materials)
     materials[m.name] = {{"reflectance", rgb_json(m.reflectance)}, {"emission", rgb_json(m.emission)}};
   j["materials"] = std::move(materials);
-  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-  for (const Patch& p : scene.patches)
-    for (const Vec3& v : p.vertices) { lo = lo.cwiseMin(v); hi = hi.cwiseMax(v); }
+  const auto [lo, hi] = scene.bounds();
   j["bounds"] = {{"min", vec_json(lo)}, {"max", vec_json(hi)}};
   return j;
 }
