@@ -16,6 +16,14 @@
 namespace hrad::test {
 namespace {
 
+// The comma-separated cells of one CSV line (the sweep's cells hold no commas).
+std::vector<std::string> csv_cells(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
 TEST(CliFormFactor, PrintsBothDirectionsMatchingHowell) {
   TempDir dir;
   // Opposed 2 x 1 rectangles 0.5 apart (Howell C-11), a point under a corner of a parallel
@@ -112,9 +120,7 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   };
   std::vector<Row> rows;
   while (std::getline(csv, line)) {
-    std::vector<std::string> cells;
-    std::istringstream in(line);
-    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    const std::vector<std::string> cells = csv_cells(line);
     ASSERT_EQ(cells.size(), 14u) << line;
     rows.push_back({cells[0], cells[1], std::stod(cells[3]), std::stod(cells[4]), std::stod(cells[8]), std::stod(cells[12])});
     EXPECT_GT(rows.back().error_l2, 0.0) << line;
@@ -182,9 +188,7 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
     const std::string b = row_of(first, value + ",");
     ASSERT_FALSE(b.empty()) << value;
     auto without_seconds = [](const std::string& line) {
-      std::vector<std::string> cells;
-      std::istringstream in(line);
-      for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+      std::vector<std::string> cells = csv_cells(line);
       cells.erase(cells.begin() + 7);
       return cells;
     };
