@@ -1,7 +1,6 @@
 #include "hrad/solvers/full_matrix.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -14,6 +13,7 @@
 
 #include "hrad/core/error.h"
 #include "hrad/core/huge_page_allocator.h"
+#include "hrad/core/progress.h"
 #include "hrad/solvers/solver_context.h"
 
 namespace hrad {
@@ -29,9 +29,9 @@ void fill_matrix(SolverContext& ctx, const ElementHierarchy& h, const std::vecto
                  Eigen::Map<RowMatrix> f) {
   const int n = static_cast<int>(leaves.size());
   const FormFactorEvaluator& evaluator = ctx.evaluator();
-  std::atomic<long long> done_pairs{0};
-  std::atomic<int> reported{0};
   const long long total_pairs = static_cast<long long>(n) * (n - 1) / 2;
+  ProgressReporter progress("full: form factors", static_cast<std::uint64_t>(total_pairs), "pairs",
+                            ctx.options().progress);
   tbb::parallel_for(tbb::blocked_range<int>(0, n, 1), [&](const tbb::blocked_range<int>& range) {
     for (int i = range.begin(); i < range.end(); ++i) {
       const ElementNode& a = h.node(leaves[static_cast<std::size_t>(i)]);
@@ -41,14 +41,10 @@ void fill_matrix(SolverContext& ctx, const ElementHierarchy& h, const std::vecto
         f(i, j) = e.value;
         f(j, i) = e.reverse;
       }
-      const long long done = done_pairs.fetch_add(n - 1 - i) + (n - 1 - i);
-      const int tenth = total_pairs > 0 ? static_cast<int>(10 * done / total_pairs) : 10;
-      int seen = reported.load();
-      while (tenth > seen && !reported.compare_exchange_weak(seen, tenth)) {
-      }
-      if (tenth > seen && tenth < 10) ctx.progress(fmt::format("full: form factors {}0% of {} pairs", tenth, total_pairs));
+      progress.advance(static_cast<std::uint64_t>(n - 1 - i));
     }
   });
+  progress.finish();
 }
 
 }  // namespace

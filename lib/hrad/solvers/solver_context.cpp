@@ -4,11 +4,13 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include "hrad/core/progress.h"
 #include "hrad/visibility/visibility.h"
 
 namespace hrad {
@@ -75,9 +77,37 @@ bool SolverContext::record_iteration(double change) {
                                    summary_.iterations, change, options_.tolerance);
     return true;
   }
-  if (summary_.iterations % 100 == 0)
-    progress(fmt::format("iteration {}: relative change {:.3g}", summary_.iterations, change));
+  report_iteration(change);
   return false;
+}
+
+void SolverContext::report_iteration(double change) {
+  // A line every kIterationLineSeconds of iterating (none for a solve that converges sooner), with
+  // the iterations still needed at the geometric rate of the last kRateWindow iterations.
+  constexpr double kIterationLineSeconds = 2.0;
+  constexpr int kRateWindow = 20;
+  const int k = summary_.iterations;
+  if (k == 1) {
+    first_iteration_at_ = total_.seconds();
+    next_iteration_line_at_ = first_iteration_at_ + kIterationLineSeconds;
+    return;
+  }
+  const double now = total_.seconds();
+  if (now < next_iteration_line_at_) return;
+  next_iteration_line_at_ = now + kIterationLineSeconds;
+  const std::vector<double>& changes = summary_.change_per_iteration;
+  const int back = std::min(kRateWindow, k - 1);
+  const std::optional<double> left =
+      iterations_left(changes[static_cast<std::size_t>(k - 1 - back)], change, back, options_.tolerance);
+  std::string line = fmt::format("iteration {}: relative change {:.3g} (tolerance {:.3g})", k, change,
+                                 options_.tolerance);
+  if (left) {
+    const double seconds_per_iteration = (now - first_iteration_at_) / (k - 1);
+    const double capped = std::min(*left, static_cast<double>(options_.max_iterations - k));
+    line += fmt::format(", about {:.0f} more iterations ({}){}", capped, format_duration(capped * seconds_per_iteration),
+                        capped < *left ? " until --max-iterations" : "");
+  }
+  progress(line);
 }
 
 void SolverContext::set_direct(std::string message) {

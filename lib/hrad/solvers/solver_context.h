@@ -78,6 +78,8 @@ class SolverContext {
   /// Appends `change` (largest relative change of this iteration) to the summary and returns true
   /// when iterating should stop: converged (change < tolerance; termination kConverged), out of
   /// iterations (kMaxIterations), or non-finite (kFailed). Sets message accordingly.
+  /// Long runs get a progress line every few seconds with the iterations still needed (extrapolated
+  /// from the change's geometric rate) and their time.
   bool record_iteration(double change);
   /// For direct solves: termination kDirect with `message`.
   void set_direct(std::string message);
@@ -93,7 +95,10 @@ class SolverContext {
  private:
   const Scene& scene_;
   const SolveOptions& options_;
+  void report_iteration(double change);
+
   Stopwatch total_;
+  double first_iteration_at_ = 0.0, next_iteration_line_at_ = 0.0;
   SolveSummary summary_;
   std::unique_ptr<Visibility> visibility_;
   std::unique_ptr<FormFactorEvaluator> evaluator_;
