@@ -9,7 +9,7 @@ packages=(
   # geometry, meshes, linear algebra, fitting
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libopenmesh-dev libeigen3-dev libceres-dev libtbb-dev
   # command line, files, formats
-  libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libtinyobjloader-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libtinyobjloader-dev libfccp-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev
   # plots written by `hrad sweep` and `hrad figures`
