@@ -18,7 +18,8 @@ endfunction()
 
 # hrad_test(NAME DEPS ... [LABELS ...]): one GoogleTest executable NAME_test from the
 # *_test.cpp files of the calling folder, registered with CTest, labelled `unit`, or by LABELS
-# instead when given (one label: gtest_discover_tests does not carry a list through).
+# instead when given. gtest_discover_tests does not carry a list through its PROPERTIES, so with
+# several labels a script run after the discovered tests' own sets them all.
 function(hrad_test name)
   cmake_parse_arguments(ARG "" "" "DEPS;LABELS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cpp)
@@ -30,8 +31,15 @@ function(hrad_test name)
   if(ARG_LABELS)
     set(labels ${ARG_LABELS})
   endif()
+  list(GET labels 0 first_label)
   gtest_discover_tests(${name}_test
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-    PROPERTIES LABELS "${labels}"
+    PROPERTIES LABELS "${first_label}"
     DISCOVERY_TIMEOUT 60)
+  list(LENGTH labels label_count)
+  if(label_count GREATER 1)
+    set(script ${CMAKE_CURRENT_BINARY_DIR}/${name}_test_labels.cmake)
+    file(WRITE ${script} "if(${name}_test_TESTS)\n  set_tests_properties(\${${name}_test_TESTS} PROPERTIES LABELS \"${labels}\")\nendif()\n")
+    set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${script})
+  endif()
 endfunction()

@@ -10,6 +10,8 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libopenmesh-dev libeigen3-dev libceres-dev libtbb-dev
   # command line, files, formats
   libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libtinyobjloader-dev libfccp-dev
+  # ray casting for the Monte Carlo reference
+  libembree-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev
   # plots written by `hrad sweep` and `hrad figures`
