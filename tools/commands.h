@@ -12,5 +12,6 @@ void add_formfactor_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
 void add_figures_command(CLI::App& app);
 void add_scene_command(CLI::App& app);
+void add_reference_command(CLI::App& app);
 
 }  // namespace hrad::cli

@@ -16,14 +16,6 @@
 namespace hrad::test {
 namespace {
 
-// The comma-separated cells of one CSV line (the sweep's cells hold no commas).
-std::vector<std::string> csv_cells(const std::string& line) {
-  std::vector<std::string> cells;
-  std::istringstream in(line);
-  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-  return cells;
-}
-
 TEST(CliFormFactor, PrintsBothDirectionsMatchingHowell) {
   TempDir dir;
   // Opposed 2 x 1 rectangles 0.5 apart (Howell C-11), a point under a corner of a parallel

@@ -32,6 +32,16 @@ inline std::string slurp(const std::string& path) {
   return s.str();
 }
 
+/// The comma-separated cells of one CSV line (for outputs whose cells hold no commas); a line
+/// ending in a comma ends in an empty cell.
+inline std::vector<std::string> csv_cells(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
 /// Runs `HRAD_EXECUTABLE args` (args are passed to /bin/sh as written) with the source tree as
 /// working directory; the captured streams go to files in `scratch`.
 inline RunResult run_hrad(const std::string& args, const TempDir& scratch) {
