@@ -24,8 +24,8 @@
 //                      without bias); 1 = direct light only
 //   --threads T        worker threads (default: all cores); the results do not depend on it
 //   --quiet            no progress on stderr
-// Progress (queries done, time elapsed, time left) goes to stderr for runs longer than 2 s; a
-// summary (rays cast, paths, seconds) to stdout. Bad options and files are a one-line error naming
+// Progress (queries done, time elapsed, time left) goes to stderr every 2 s for runs longer than
+// that; a summary (rays cast, paths, seconds) to stdout. Bad options and files are a one-line error naming
 // the option or file:line, before any work.
 #include <iostream>
 #include <string>
@@ -38,7 +38,6 @@
 #include "hrad/io/obj_reader.h"
 #include "hrad/io/points_csv.h"
 #include "hrad/reference/reference.h"
-#include "progress_bar.h"
 
 namespace hrad::cli {
 namespace {
@@ -95,8 +94,7 @@ void add_reference_command(CLI::App& app) {
     std::vector<ProbePoint> points;
     if (!args->faces) points = read_points_csv(args->points);
     for (const std::string& w : warnings) std::cerr << w << "\n";
-    EtaProgress progress(args->faces ? "faces" : "points");
-    if (!args->quiet) options.progress = [&progress](std::size_t done, std::size_t total) { progress(done, total); };
+    if (!args->quiet) options.progress = [](std::string_view line) { std::cerr << "hrad " << line << "\n"; };
 
     if (args->faces) {
       std::vector<FaceEstimate> faces;

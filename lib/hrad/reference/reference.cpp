@@ -4,7 +4,8 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
-#include <mutex>
+#include <string>
+#include <string_view>
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
@@ -12,6 +13,7 @@
 #include <tbb/parallel_for.h>
 
 #include "hrad/core/error.h"
+#include "hrad/core/progress.h"
 #include "hrad/core/rng.h"
 #include "hrad/core/stopwatch.h"
 #include "hrad/reference/area_sampler.h"
@@ -42,7 +44,8 @@ double scene_size(const Scene& scene) {
 // merges each query's blocks in block order.
 template <class Trace>
 std::vector<detail::RunningStats> run_blocks(std::size_t queries, const std::vector<int>& blocks_per_query,
-                                             const ReferenceOptions& options, RayCounts* rays, const Trace& trace) {
+                                             std::string_view unit, const ReferenceOptions& options, RayCounts* rays,
+                                             const Trace& trace) {
   std::vector<std::size_t> first_item(queries + 1, 0);
   for (std::size_t q = 0; q < queries; ++q) first_item[q + 1] = first_item[q] + static_cast<std::size_t>(blocks_per_query[q]);
   const std::size_t items = first_item[queries];
@@ -55,10 +58,10 @@ std::vector<detail::RunningStats> run_blocks(std::size_t queries, const std::vec
   std::vector<std::atomic<int>> blocks_left(queries);
   for (std::size_t q = 0; q < queries; ++q) blocks_left[q].store(blocks_per_query[q]);
   std::atomic<std::uint64_t> closest_hit{0}, shadow{0};
-  std::atomic<std::size_t> done{0};
-  std::mutex progress_mutex;
+  ProgressReporter progress("reference", queries, std::string(unit), options.progress);
   // Queries with no block are done before any work.
-  for (std::size_t q = 0; q < queries; ++q) done += blocks_per_query[q] == 0 ? 1 : 0;
+  for (std::size_t q = 0; q < queries; ++q)
+    if (blocks_per_query[q] == 0) progress.advance();
 
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, 1), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t item = r.begin(); item != r.end(); ++item) {
@@ -69,15 +72,10 @@ std::vector<detail::RunningStats> run_blocks(std::size_t queries, const std::vec
       trace(q, block, rng, counts, block_stats[item]);
       closest_hit += counts.closest_hit;
       shadow += counts.shadow;
-      if (blocks_left[q].fetch_sub(1) == 1) {
-        const std::size_t finished = ++done;
-        if (options.progress) {
-          const std::lock_guard<std::mutex> lock(progress_mutex);
-          options.progress(finished, queries);
-        }
-      }
+      if (blocks_left[q].fetch_sub(1) == 1) progress.advance();
     }
   });
+  progress.finish();
 
   std::vector<detail::RunningStats> stats(queries);
   for (std::size_t q = 0; q < queries; ++q)
@@ -167,7 +165,7 @@ ReferenceSummary reference_points(const Scene& scene, std::span<const ProbePoint
 
     const std::vector<int> blocks(points.size(), block_count(static_cast<std::uint64_t>(options.samples)));
     const std::vector<detail::RunningStats> stats = run_blocks(
-        points.size(), blocks, options, &counts,
+        points.size(), blocks, "points", options, &counts,
         [&](std::size_t q, std::size_t block, detail::Rng& rng, RayCounts& c, detail::RunningStats& s) {
           const auto [begin, end] = block_range(block, options.samples);
           for (int k = begin; k < end; ++k) s.add(tracer.irradiance(position[q], normal[q], rng, c));
@@ -210,7 +208,7 @@ ReferenceSummary reference_faces(const Scene& scene, const ReferenceOptions& opt
     }
 
     const std::vector<detail::RunningStats> stats = run_blocks(
-        faces, blocks, options, &counts,
+        faces, blocks, "faces", options, &counts,
         [&](std::size_t f, std::size_t block, detail::Rng& rng, RayCounts& c, detail::RunningStats& s) {
           const auto [begin, end] = block_range(block, samples);
           for (int k = begin; k < end; ++k) {

@@ -23,11 +23,11 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <span>
 #include <vector>
 
 #include "hrad/core/probe_point.h"
+#include "hrad/core/progress.h"
 #include "hrad/core/scene.h"
 #include "hrad/core/types.h"
 
@@ -45,9 +45,9 @@ struct ReferenceOptions {
   std::uint64_t seed = 1;
   /// Worker threads; 0 = TBB's default (all cores). The results do not depend on it.
   int threads = 0;
-  /// Called with (queries done, queries in all) as queries finish, from worker threads, one call at
-  /// a time; may be empty.
-  std::function<void(std::size_t, std::size_t)> progress;
+  /// Lines of progress for long runs (queries done of all, time elapsed, time left; at most one
+  /// every 2 s, none for shorter runs: core/progress.h); may be empty.
+  ProgressSink progress;
 };
 
 /// Paths per block (the unit of parallel work and of seeding).
