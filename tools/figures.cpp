@@ -123,7 +123,10 @@ void add_figures_command(CLI::App& app) {
   cmd->callback([args] {
     const std::set<int> only = parse_only(args->only);
     if (args->threads < 0) throw Error(fmt::format("--threads must be >= 0, got {}", args->threads));
-    const std::string dir = args->out;  // created by the first atomic write, after the inputs are read
+    const std::string dir = args->out;
+    // Every file goes into a staging folder and is renamed into DIR at the end (io/atomic_file.h).
+    OutputFiles outputs;
+    outputs.declare_folder("--out", dir);
     const bool quick = args->quick;
     const int threads = args->threads;
     const auto started = std::chrono::steady_clock::now();
@@ -263,6 +266,7 @@ void add_figures_command(CLI::App& app) {
                fmt::format("build/bin/hrad figures --out {}{}{}{}\n", dir, quick ? " --quick" : "",
                            args->scenes != "notebooks_data/scenes" ? " --scenes " + args->scenes : "",
                            args->only.empty() ? "" : " --only " + args->only));
+    outputs.commit();
     std::cout << headlines.dump(2) << "\n";
     std::cout << fmt::format("wrote the figures to {} in {:.1f} s\n", dir, seconds);
   });

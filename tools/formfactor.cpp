@@ -29,6 +29,7 @@
 #include "commands.h"
 #include "hrad/core/error.h"
 #include "hrad/io/formfactor_json.h"
+#include "hrad/io/input_file.h"
 
 namespace hrad::cli {
 
@@ -38,11 +39,7 @@ void add_formfactor_command(CLI::App& app) {
   cmd->add_option("--json", *path, "Input file: {\"pairs\": [{\"name\", \"from\" | \"from_point\" + \"from_normal\", \"to\"}]}")
       ->required();
   cmd->callback([path] {
-    std::ifstream in(*path, std::ios::binary);
-    if (!in) throw Error(fmt::format("{}: cannot open file", *path));
-    std::stringstream text;
-    text << in.rdbuf();
-    std::cout << evaluate_formfactor_json(text.str(), *path);
+    std::cout << evaluate_formfactor_json(read_input_file(*path), *path);
   });
 }
 

@@ -34,6 +34,7 @@
 #include "commands.h"
 #include "hrad/core/error.h"
 #include "hrad/analysis/error_metrics.h"
+#include "hrad/io/atomic_file.h"
 #include "hrad/io/obj_reader.h"
 #include "hrad/io/png_writer.h"
 #include "hrad/io/solution_ply.h"
@@ -121,6 +122,9 @@ void add_render_command(CLI::App& app) {
     if (args->log_scale && error_range && !(error_range->first > 0.0))
       throw Error("--error-range: LO must be positive with --log");
 
+    OutputFiles outputs;
+    outputs.declare("--out", args->out);
+    outputs.check_inputs({{"the solution", args->solution}, {"--reference", args->reference}, {"--scene", args->scene}});
     const Solution solution = read_solution_ply(args->solution);
     RenderOptions options;
     options.camera = camera ? *camera : default_camera(solution, args->width, args->height);
@@ -129,6 +133,9 @@ void add_render_command(CLI::App& app) {
     Image image;
     if (!args->reference.empty()) {
       const Scene scene = read_obj_scene(args->scene);
+      std::vector<std::pair<std::string, std::string>> inputs;
+      for (const std::string& f : scene.files) inputs.emplace_back("an input of --scene", f);
+      outputs.check_inputs(inputs);
       const Solution reference = read_solution_ply(args->reference);
       for (int p : solution.face_patch)
         if (static_cast<std::size_t>(p) >= scene.patches.size())
@@ -176,6 +183,7 @@ void add_render_command(CLI::App& app) {
       image = args->wireframe ? render_wireframe(solution, options) : render_solution(solution, options);
     }
     write_png(args->out, image);
+    outputs.commit();
     std::cout << fmt::format("{}: {}x{} image of {} elements, exposure {:.6g}\n", args->out, image.width, image.height,
                              solution.faces.size(), options.exposure);
   });

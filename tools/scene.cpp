@@ -9,13 +9,16 @@
 //   --polygons N   input polygons wanted (64 .. 10,000,000)
 //   --seed S       furniture placement seed (default 1)
 //   --out FILE     the OBJ file to write
+#include <charconv>
 #include <iostream>
+#include <limits>
 
 #include <fmt/format.h>
 
 #include "commands.h"
 #include "hrad/core/error.h"
 #include "hrad/experiments/scene_generator.h"
+#include "hrad/io/atomic_file.h"
 
 namespace hrad::cli {
 
@@ -25,7 +28,7 @@ void add_scene_command(CLI::App& app) {
   auto* gen = cmd->add_subcommand("generate", "Write a closed office room with about N input polygons (OBJ + MTL)");
   struct Args {
     int polygons = 0;
-    long long seed = 1;
+    std::string seed = "1";
     std::string out;
   };
   auto args = std::make_shared<Args>();
@@ -33,13 +36,24 @@ void add_scene_command(CLI::App& app) {
   gen->add_option("--seed", args->seed, "Placement seed (default 1)");
   gen->add_option("--out", args->out, "OBJ file to write (the .mtl goes beside it)")->required();
   gen->callback([args] {
-    if (args->seed < 0) throw Error(fmt::format("--seed must be >= 0, got {}", args->seed));
+    // Parsed here, not by CLI11 (which accepted 99999999999999999999): a whole number that fits 64 bits.
+    std::uint64_t seed = 0;
+    const char* first = args->seed.data();
+    const char* last = first + args->seed.size();
+    const auto [end, ec] = std::from_chars(first, last, seed);
+    if (args->seed.empty() || ec != std::errc() || end != last)
+      throw Error(fmt::format("--seed must be a whole number in [0, {}], got '{}'",
+                              std::numeric_limits<std::uint64_t>::max(), args->seed));
     if (args->out.empty()) throw Error("--out must name a file");
     SceneGeneratorOptions o;
     o.polygons = args->polygons;
-    o.seed = static_cast<std::uint64_t>(args->seed);
+    o.seed = seed;
+    OutputFiles outputs;
+    outputs.declare("--out", args->out);
+    outputs.declare("the material library beside --out", generated_mtl_path(args->out));
     const GeneratedScene scene = generate_scene(o);
     write_generated_scene(scene, args->out);
+    outputs.commit();
     std::cout << fmt::format("{}: {} polygons, {} x {} cells, room {} x {} x {} m\n", args->out, scene.faces.size(),
                              scene.cells_x, scene.cells_z, scene.room_size.x(), scene.room_size.y(), scene.room_size.z());
   });

@@ -1,7 +1,9 @@
 // hrad solve SCENE [--method full|substructure|hierarchical] [options] [--report R.json] [--out S.ply]
 //
 // Solves the radiosity of a scene (OBJ + MTL) and writes a report and the leaf mesh. Both outputs
-// are optional and written atomically; progress goes to stderr, a summary to stdout.
+// are optional; they are checked before any work (never an input of the scene, never the same file,
+// a regular file or a new path in a writable folder) and written together at the end, atomically;
+// progress goes to stderr, a summary to stdout.
 //
 //   --method M             full (classical, n x n matrix), substructure (patches shoot, elements
 //                          receive) or hierarchical (HSA 1991 quadtrees and links); default hierarchical
@@ -40,6 +42,7 @@
 
 #include "commands.h"
 #include "hrad/core/error.h"
+#include "hrad/io/atomic_file.h"
 #include "hrad/io/obj_reader.h"
 #include "hrad/report/report_json.h"
 #include "hrad/io/solution_ply.h"
@@ -107,10 +110,18 @@ void add_solve_command(CLI::App& app) {
     o.threads = args->threads;
     if (!args->quiet) o.progress = [](std::string_view line) { std::cerr << "hrad solve: " << line << "\n"; };
     validate_options(o);
+    // Outputs are checked before any work and written together at the end (io/atomic_file.h).
+    OutputFiles outputs;
+    if (!args->report.empty()) outputs.declare("--report", args->report);
+    if (!args->out.empty()) outputs.declare("--out", args->out);
+    outputs.check_inputs({{"the scene", args->scene}});
 
     std::vector<std::string> warnings;
     const Scene scene = read_obj_scene(args->scene, &warnings);
     for (const std::string& w : warnings) std::cerr << w << "\n";
+    std::vector<std::pair<std::string, std::string>> inputs;
+    for (const std::string& f : scene.files) inputs.emplace_back("an input of the scene", f);
+    outputs.check_inputs(inputs);
     Solution solution;
     const SolveSummary summary = solve(scene, o, &solution);
 
@@ -124,6 +135,7 @@ void add_solve_command(CLI::App& app) {
       }
       write_solution_ply(args->out, solution, exposure);
     }
+    outputs.commit();
     std::cout << fmt::format("{}: {} on {} patches: {} elements, {} links, {} form factors, {} visibility queries\n",
                              scene.path, to_string(summary.method), summary.patches, summary.elements, summary.links,
                              summary.form_factor_evaluations, summary.visibility_queries);

@@ -80,7 +80,7 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--aeps", args->aeps, "Hierarchical smallest-element areas as fractions of the total area");
   cmd->add_option("--visibility-samples", args->visibility_samples,
                   "Point pairs per partly visible pair in every run (default: the solvers'); the reference uses 4x");
-  cmd->callback([args] {
+  cmd->callback([args, cmd] {
     if (!(args->samples >= 1 && args->samples <= 1'000'000)) throw Error(fmt::format("--samples must be in [1, 1e6], got {}", args->samples));
     if (!(args->target_error > 0 && args->target_error < 1)) throw Error(fmt::format("--target-error must be in (0, 1), got {}", args->target_error));
     if (!(args->reference_elements >= 0 && args->reference_elements <= 1e6))
@@ -90,13 +90,30 @@ void add_sweep_command(CLI::App& app) {
     if (args->threads < 0) throw Error(fmt::format("--threads must be >= 0, got {}", args->threads));
     if (args->visibility_samples < 0 || args->visibility_samples > 65536)
       throw Error(fmt::format("--visibility-samples must be in [0, 65536], got {}", args->visibility_samples));
+    // A list option given on the command line must hold at least one number ("--elements ''" is a typo,
+    // not "the defaults").
+    for (const auto& [name, text] : {std::pair{"--elements", args->elements}, {"--patches", args->patches},
+                                     {"--feps", args->feps}, {"--aeps", args->aeps}})
+      if (cmd->count(name) > 0 && text.empty()) throw Error(fmt::format("{}: expected comma-separated numbers, got ''", name));
     const auto elements = parse_list("--elements", args->elements, 1.0, 1e6);
     const auto patches = parse_list("--patches", args->patches, 1.0, 1e6);
     const auto feps = parse_list("--feps", args->feps, 1e-9, 1.0);
     const auto aeps = parse_list("--aeps", args->aeps, 1e-12, 1.0);
+    const std::string dir = args->out;
+    OutputFiles outputs;
+    for (const char* name : {"sweep.csv", "reference.json", "reference_samples.json", "fit.json", "command.txt", "pareto.png"})
+      outputs.declare("--out", dir + "/" + name);
+    std::vector<std::pair<std::string, std::string>> inputs = {{"the scene", args->scene}};
+    if (!args->reference_from.empty())
+      for (const char* name : {"reference.json", "reference_samples.json"})
+        inputs.emplace_back("an input of --reference-from", args->reference_from + "/" + name);
+    outputs.check_inputs(inputs);
     std::vector<std::string> warnings;
     const Scene scene = read_obj_scene(args->scene, &warnings);
     for (const auto& w : warnings) std::cerr << w << "\n";
+    inputs.clear();
+    for (const std::string& f : scene.files) inputs.emplace_back("an input of the scene", f);
+    outputs.check_inputs(inputs);
 
     SweepOptions options;
     options.samples_per_patch = args->samples;
@@ -128,7 +145,6 @@ void add_sweep_command(CLI::App& app) {
     const std::vector<SweepRow> rows = run_sweep(scene, reference, options);
     const nlohmann::json fits = sweep_fits(rows, args->target_error);
 
-    const std::string dir = args->out;
     write_file_atomically(dir + "/sweep.csv", [&](std::ostream& o) { o << sweep_csv(rows); });
     nlohmann::json ref = reference.description;
     ref["scene"] = args->scene;
@@ -150,6 +166,7 @@ void add_sweep_command(CLI::App& app) {
     });
     run_plot("pareto.py", {dir + "/sweep.csv", dir + "/pareto.png", "What accuracy costs in time: " + scene.path});
 
+    outputs.commit();
     std::cout << fmt::format("{} runs; wrote {}/sweep.csv, reference.json, fit.json, pareto.png\n", rows.size(), dir);
     for (const char* key : {"speedup", "speedup_smooth", "speedup_at_common_error", "speedup_at_common_error_smooth",
                             "speedup_extrapolated", "speedup_extrapolated_smooth"})

@@ -108,6 +108,10 @@ const BadInput kCases[] = {
     {"reference_missing_scene", {}, "reference {d}/missing.obj --faces --out {d}/r.csv", "missing.obj"},
     {"reference_unwritable_output", {}, "reference " + kScene + " --faces --samples 2 --out /proc/hrad-no-such/r.csv",
      "/proc/hrad-no-such"},
+    // Numbers CLI11 would take: a seed beyond 64 bits, an empty list.
+    {"scene_seed_beyond_64_bits", {}, "scene generate --polygons 100 --seed 99999999999999999999 --out {d}/g.obj",
+     "--seed"},
+    {"sweep_empty_elements", {}, "sweep " + kScene + " --out {d}/sweep --elements ''", "--elements"},
     {"figures_unknown_figure", {}, "figures --out {d}/figs --only 7", "--only"},
     {"figures_missing_scenes", {}, "figures --out {d}/figs --only 1 --scenes {d}/nowhere", "nowhere"},
 };

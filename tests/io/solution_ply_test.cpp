@@ -1,5 +1,6 @@
 #include "hrad/io/solution_ply.h"
 
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -8,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "hrad/core/error.h"
+#include "hrad/render/face_geometry.h"
 #include "hrad/render/tone_map.h"
 #include "../support/temp_dir.h"
 
@@ -71,8 +73,9 @@ TEST(SolutionPly, VertexColoursAreToneMappedRadiosity) {
   EXPECT_EQ(int(c[2]), 255);
 }
 
-TEST(SolutionPly, NonManifoldFaceGetsItsOwnVertices) {
-  // Three triangles on one edge (0,1): OpenMesh's half-edge mesh cannot hold the third.
+TEST(SolutionPly, NonManifoldFacesKeepTheirSharedVertices) {
+  // Three triangles on one edge (0,1): a half-edge mesh cannot hold the third; the PLY is a plain
+  // face list, so every face comes back with the vertices it was written with.
   Solution s;
   s.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 1, 0), Vec3(0.5, -1, 0), Vec3(0.5, 0, 1)};
   s.vertex_radiosity.assign(5, Rgb(1, 2, 3));
@@ -82,14 +85,54 @@ TEST(SolutionPly, NonManifoldFaceGetsItsOwnVertices) {
   test::TempDir dir;
   write_solution_ply(dir.path("nm.ply"), s, 1.0);
   const Solution r = read_solution_ply(dir.path("nm.ply"));
-  ASSERT_EQ(r.faces.size(), 3u);
-  EXPECT_GT(r.vertices.size(), s.vertices.size());
-  for (std::size_t f = 0; f < 3; ++f) {
-    ASSERT_EQ(r.faces[f].size(), 3u);
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR((r.vertices[r.faces[f][k]] - s.vertices[s.faces[f][k]]).norm(), 0, 1e-7);
-    EXPECT_EQ(r.face_radiosity[f][0], s.face_radiosity[f][0]);
-    EXPECT_EQ(r.face_patch[f], s.face_patch[f]);
-  }
+  EXPECT_EQ(r.vertices, s.vertices);
+  EXPECT_EQ(r.faces, s.faces);
+  EXPECT_EQ(r.face_patch, s.face_patch);
+  for (std::size_t f = 0; f < 3; ++f) EXPECT_EQ(r.face_radiosity[f][0], s.face_radiosity[f][0]);
+}
+
+// Positions are stored in double precision: a 1e-6 x 1e-6 element at 1 km from the origin keeps its
+// area (in float32 its corners, 6e-5 apart at that magnitude, collapsed onto one another).
+TEST(SolutionPly, TinyElementFarFromTheOriginRoundTripsExactly) {
+  Solution s;
+  const Vec3 o(1000.0, 999.5, -1000.0);
+  s.vertices = {o, o + Vec3(1e-6, 0, 0), o + Vec3(1e-6, 1e-6, 0), o + Vec3(0, 1e-6, 0)};
+  s.vertex_radiosity.assign(4, Rgb(1, 1, 1));
+  s.faces = {{0, 1, 2, 3}};
+  s.face_patch = {0};
+  s.face_radiosity = {Rgb(0.5, 0.5, 0.5)};
+  test::TempDir dir;
+  write_solution_ply(dir.path("tiny.ply"), s, 1.0);
+  const Solution r = read_solution_ply(dir.path("tiny.ply"));
+  EXPECT_EQ(r.vertices, s.vertices);  // bit for bit: a permutation and a sign change are exact
+  EXPECT_NEAR(face_area(r, 0), 1e-12, 1e-12 * 1e-6);
+}
+
+// Blender imports PLY positions as they are, with +Z up; hrad's scenes are +Y up (OBJ, glTF). The
+// file stores (x, -z, y) and says so in a comment: an OBJ point (1, 2, 3) is written as (1, -3, 2),
+// and a file without the comment is read as it is.
+TEST(SolutionPly, StoresZUpForBlenderAndSaysSo) {
+  Solution s = small_solution();
+  test::TempDir dir;
+  write_solution_ply(dir.path("s.ply"), s, 1.0);
+  std::ifstream in(dir.path("s.ply"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(bytes.find("comment hrad axes: stored (x, -z, y)"), std::string::npos);
+  EXPECT_NE(bytes.find("property double x\nproperty double y\nproperty double z\n"), std::string::npos);
+  const std::size_t body = bytes.find("end_header\n") + 11;
+  double first[3];
+  std::memcpy(first, bytes.data() + body + 51 * 6, sizeof first);  // vertex 6 = (0, 0, 5): 51 bytes per vertex
+  EXPECT_EQ(first[0], 0.0);
+  EXPECT_EQ(first[1], -5.0);
+  EXPECT_EQ(first[2], 0.0);
+  const std::string plain = dir.write("plain.ply",
+                                      "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+                                      "property double z\nproperty double radiosity_r\nproperty double radiosity_g\n"
+                                      "property double radiosity_b\nelement face 1\n"
+                                      "property list uchar int vertex_indices\nproperty double radiosity_r\n"
+                                      "property double radiosity_g\nproperty double radiosity_b\nproperty int patch\n"
+                                      "end_header\n1 2 3 0 0 0\n2 2 3 0 0 0\n1 3 3 0 0 0\n3 0 1 2 1 1 1 0\n");
+  EXPECT_EQ(read_solution_ply(plain).vertices[0], Vec3(1, 2, 3));
 }
 
 void expect_error_naming(const std::string& path, const std::string& fragment) {

@@ -1,6 +1,4 @@
-"""Shared helpers of hrad's plot scripts: a non-interactive backend and atomic PNG writes."""
-import os
-import tempfile
+"""Shared helpers of hrad's plot scripts: a non-interactive backend and PNG writes."""
 
 import matplotlib
 
@@ -11,16 +9,10 @@ COLORS = {"full": "#d62728", "substructure": "#1f77b4", "hierarchical": "#2ca02c
 
 
 def save(fig, path):
-    """Writes the figure to a temporary file beside `path`, then renames it."""
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".plot-", suffix=".png", dir=folder)
-    os.close(fd)
-    try:
-        fig.savefig(tmp, dpi=120, format="png")
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    """Writes the figure to `path`. hrad passes a temporary in its staging folder and renames it with
+    the command's other outputs, so the file is created here like any other output: mode 0666 less
+    the umask (tempfile.mkstemp would make it 0600)."""
+    fig.savefig(path, dpi=120, format="png")
     plt.close(fig)
 
 

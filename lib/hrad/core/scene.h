@@ -40,6 +40,7 @@ struct InputFace {
 
 struct Scene {
   std::string path;            ///< the file it was read from, for messages
+  std::vector<std::string> files;  ///< every file read to make it (scene, material libraries): outputs must not replace them
   std::vector<Material> materials;
   std::vector<Patch> patches;
   std::vector<InputFace> faces;

@@ -229,9 +229,13 @@ Scene to_scene(const GeneratedScene& g) {
   return scene;
 }
 
+std::string generated_mtl_path(const std::string& obj_path) {
+  return std::filesystem::path(obj_path).replace_extension(".mtl").string();
+}
+
 void write_generated_scene(const GeneratedScene& g, const std::string& obj_path) {
   namespace fs = std::filesystem;
-  const fs::path mtl = fs::path(obj_path).replace_extension(".mtl");
+  const fs::path mtl = generated_mtl_path(obj_path);
   write_file_atomically(mtl.string(), [&](std::ostream& out) {
     out << "# hrad scene generate: materials\n";
     for (const Material& m : g.materials) {

@@ -52,6 +52,9 @@ GeneratedScene generate_scene(const SceneGeneratorOptions& options);
 /// The same as a Scene (one patch per face, normals and areas computed), for benchmarks without files.
 Scene to_scene(const GeneratedScene& generated);
 
+/// The material library's path for `obj_path`: the same name with .mtl.
+std::string generated_mtl_path(const std::string& obj_path);
+
 /// Writes `obj_path` and the material library beside it (same stem, .mtl), each atomically.
 void write_generated_scene(const GeneratedScene& generated, const std::string& obj_path);
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -15,6 +16,7 @@
 
 #include "hrad/core/error.h"
 #include "hrad/geometry/polygon.h"
+#include "hrad/io/input_file.h"
 
 // tinyobjloader does the parsing; this file adds what a radiosity scene needs on top of it:
 // the line of every statement (for messages), range checks, and the patch rules of obj_reader.h.
@@ -36,12 +38,9 @@ std::vector<std::string> tokens_of(const std::string& line) {
   return t;
 }
 
-std::vector<std::string> read_lines(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw_at(path, 0, "cannot open file (missing or not a regular file)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw_at(path, 0, "cannot open file");
+std::vector<std::string> split_lines(const std::string& path, const std::string& bytes) {
   std::vector<std::string> lines;
+  std::istringstream in(bytes);
   for (std::string line; std::getline(in, line);) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.find('\0') != std::string::npos) throw_at(path, lines.size() + 1, "binary data in a text file");
@@ -75,8 +74,8 @@ struct ObjLines {
   std::map<std::string, std::size_t> first_usemtl;          // material name -> first `usemtl` line
 };
 
-ObjLines scan_obj(const std::string& path, const ObjReadOptions& options) {
-  const std::vector<std::string> lines = read_lines(path);
+ObjLines scan_obj(const std::string& path, const std::string& bytes, const ObjReadOptions& options) {
+  const std::vector<std::string> lines = split_lines(path, bytes);
   ObjLines at;
   bool any_statement = false;
   for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -126,8 +125,8 @@ struct MtlLines {
   std::map<std::string, std::size_t> newmtl, kd, ke;
 };
 
-MtlLines scan_mtl(const std::string& path) {
-  const std::vector<std::string> lines = read_lines(path);
+MtlLines scan_mtl(const std::string& path, const std::string& bytes) {
+  const std::vector<std::string> lines = split_lines(path, bytes);
   MtlLines at;
   at.path = path;
   std::string current;
@@ -155,12 +154,15 @@ class MtlReader : public tinyobj::MaterialReader {
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* ids, std::string* warn, std::string* err) override {
     const std::string path = (std::filesystem::path(dir_) / name).string();
-    scans.push_back(scan_mtl(path));  // throws on a missing or malformed file
-    std::ifstream in(path);
+    const std::string bytes = read_input_file(path);
+    scans.push_back(scan_mtl(path, bytes));  // throws on a malformed file
+    files.push_back(path);
+    std::istringstream in(bytes);
     tinyobj::LoadMtl(ids, materials, &in, warn, err);
     return true;
   }
   std::vector<MtlLines> scans;
+  std::vector<std::string> files;
 
  private:
   std::string dir_;
@@ -212,11 +214,12 @@ Scene read_obj_scene(const std::string& path, std::vector<std::string>* warnings
   const auto warn = [&](std::size_t line, const std::string& message) {
     if (warnings) warnings->push_back(fmt::format("{}:{}: warning: {}", path, line, message));
   };
-  const ObjLines at = scan_obj(path, options);
+  const std::string bytes = read_input_file(path);
+  const ObjLines at = scan_obj(path, bytes, options);
   for (const auto& [line, name] : at.mtllib) {
     const std::string mtl = (std::filesystem::path(path).parent_path() / name).string();
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(mtl, ec)) throw_at(path, line, fmt::format("cannot open material library '{}'", name));
+    if (!std::filesystem::exists(mtl, ec)) throw_at(path, line, fmt::format("cannot open material library '{}'", name));
   }
 
   tinyobj::attrib_t attrib;
@@ -224,7 +227,7 @@ Scene read_obj_scene(const std::string& path, std::vector<std::string>* warnings
   std::vector<tinyobj::material_t> materials;
   std::string warn_text, err_text;
   MtlReader mtl_reader(std::filesystem::path(path).parent_path().string());
-  std::ifstream in(path);
+  std::istringstream in(bytes);
   const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn_text, &err_text, &in, &mtl_reader,
                                    /*triangulate=*/false);
   if (!ok || !err_text.empty()) {
@@ -238,6 +241,8 @@ Scene read_obj_scene(const std::string& path, std::vector<std::string>* warnings
 
   Scene scene;
   scene.path = path;
+  scene.files.push_back(path);
+  scene.files.insert(scene.files.end(), mtl_reader.files.begin(), mtl_reader.files.end());
   std::map<int, int> material_index;  // tinyobj id -> scene id, only materials faces use
   for (const tinyobj::shape_t& shape : shapes) {
     const tinyobj::mesh_t& mesh = shape.mesh;

@@ -150,10 +150,15 @@ Solution ElementHierarchy::to_solution(double weld_tolerance) const {
       hi = hi.cwiseMax(v);
     }
   const double diagonal = (hi - lo).norm();
-  const double tol = weld_tolerance > 0.0 ? weld_tolerance : 1e-9 * diagonal;
   std::vector<double> edge_lengths;
   edge_lengths.reserve(leaf_ids.size());
   for (NodeId id : leaf_ids) edge_lengths.push_back((node(id).vertices[1] - node(id).vertices[0]).norm());
+  // Welding merges corners that are one point up to rounding (~1e-16 of the coordinates), so 1e-9 of
+  // the scene's diagonal is plenty, but never more than 1e-3 of the shortest leaf edge: a 1e-6 element
+  // in a 1 km room (diagonal 1.7 km) collapsed to a point under a 1.7e-6 tolerance.
+  const double shortest_edge = *std::min_element(edge_lengths.begin(), edge_lengths.end());
+  const double tol =
+      weld_tolerance > 0.0 ? weld_tolerance : std::min(1e-9 * diagonal, shortest_edge > 0.0 ? 1e-3 * shortest_edge : INFINITY);
   std::nth_element(edge_lengths.begin(), edge_lengths.begin() + edge_lengths.size() / 2, edge_lengths.end());
   const double cell = std::max(edge_lengths[edge_lengths.size() / 2], 4.0 * tol);
 
