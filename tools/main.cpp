@@ -1,6 +1,7 @@
 // hrad: hierarchical radiosity research toolkit, command-line front end.
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 
 #include <fmt/format.h>
@@ -45,6 +46,15 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const hrad::Error& e) {
     std::fprintf(stderr, "hrad: error: %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    // Sizes are checked up front (solvers/work_estimate.h, render, scene generate); this is what slipped by.
+    std::string running = "hrad";
+    for (const CLI::App* sub : app.get_subcommands()) running = sub->get_name();
+    std::fprintf(stderr,
+                 "hrad: error: out of memory in '%s': make the work smaller (solve: a larger --aeps or --max-area; "
+                 "render: a smaller --width/--height; scene generate: fewer --polygons)\n",
+                 running.c_str());
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "hrad: internal error: %s\n", e.what());

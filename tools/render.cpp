@@ -33,6 +33,7 @@
 #include "comma_numbers.h"
 #include "commands.h"
 #include "hrad/core/error.h"
+#include "hrad/core/memory.h"
 #include "hrad/analysis/error_metrics.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/obj_reader.h"
@@ -108,6 +109,15 @@ void add_render_command(CLI::App& app) {
       throw Error(fmt::format("--width: {} is not in [1, 16384]", args->width));
     if (args->height < 1 || args->height > 16384)
       throw Error(fmt::format("--height: {} is not in [1, 16384]", args->height));
+    // Per pixel: the RGB image, the depth buffer (double) and the per-pixel face ids and weights the
+    // error image keeps: 32 bytes is an upper bound. Refused up front rather than std::bad_alloc.
+    {
+      const double bytes = 32.0 * args->width * args->height, available = available_memory_bytes();
+      if (available > 0.0 && bytes > 0.8 * available)
+        throw Error(fmt::format("--width/--height: a {} x {} image needs about {} and this process may use {}: "
+                                "render smaller",
+                                args->width, args->height, format_bytes(bytes), format_bytes(available)));
+    }
     if (cmd->count("--exposure") && !(args->exposure > 0.0 && std::isfinite(args->exposure)))
       throw Error(fmt::format("--exposure: {} is not a positive number", args->exposure));
     // Every option is checked before any file is read.

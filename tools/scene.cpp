@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "hrad/core/error.h"
+#include "hrad/core/memory.h"
 #include "hrad/experiments/scene_generator.h"
 #include "hrad/io/atomic_file.h"
 
@@ -45,6 +46,12 @@ void add_scene_command(CLI::App& app) {
       throw Error(fmt::format("--seed must be a whole number in [0, {}], got '{}'",
                               std::numeric_limits<std::uint64_t>::max(), args->seed));
     if (args->out.empty()) throw Error("--out must name a file");
+    // Each polygon holds its corners, group and material (~200 bytes) while the OBJ is written:
+    // 512 bytes is an upper bound. Refused up front rather than std::bad_alloc.
+    const double bytes = 512.0 * args->polygons, available = available_memory_bytes();
+    if (available > 0.0 && bytes > 0.8 * available)
+      throw Error(fmt::format("--polygons: {} polygons need about {} and this process may use {}: ask for fewer",
+                              args->polygons, format_bytes(bytes), format_bytes(available)));
     SceneGeneratorOptions o;
     o.polygons = args->polygons;
     o.seed = seed;

@@ -35,6 +35,7 @@
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/obj_reader.h"
 #include "hrad/report/report_json.h"
+#include "hrad/solvers/work_estimate.h"
 #include "plot.h"
 #include "progress_bar.h"
 
@@ -88,8 +89,10 @@ void add_sweep_command(CLI::App& app) {
     if (!args->reference_from.empty() && args->reference_elements > 0)
       throw Error("--reference-from and --reference-elements exclude each other (the reference is read, not solved)");
     if (args->threads < 0) throw Error(fmt::format("--threads must be >= 0, got {}", args->threads));
-    if (args->visibility_samples < 0 || args->visibility_samples > 65536)
-      throw Error(fmt::format("--visibility-samples must be in [0, 65536], got {}", args->visibility_samples));
+    // The reference uses 4x: at most the solvers' kMaxVisibilitySamples.
+    if (args->visibility_samples < 0 || args->visibility_samples > kMaxVisibilitySamples / 4)
+      throw Error(fmt::format("--visibility-samples must be in [0, {}], got {}", kMaxVisibilitySamples / 4,
+                              args->visibility_samples));
     // A list option given on the command line must hold at least one number ("--elements ''" is a typo,
     // not "the defaults").
     for (const auto& [name, text] : {std::pair{"--elements", args->elements}, {"--patches", args->patches},

@@ -27,6 +27,7 @@ std::string replace_all(std::string text, const std::string& from, const std::st
 }
 
 const std::string kScene = "notebooks_data/scenes/two_far_surfaces.obj";
+const std::string kCornell = "notebooks_data/scenes/cornell_box.obj";
 const std::string kSquares = R"({"pairs": [{"name": "a", "from": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]],
                                             "to": [[0,0,1],[0,1,1],[1,1,1],[1,0,1]]}]})";
 
@@ -108,6 +109,20 @@ const BadInput kCases[] = {
     {"reference_missing_scene", {}, "reference {d}/missing.obj --faces --out {d}/r.csv", "missing.obj"},
     {"reference_unwritable_output", {}, "reference " + kScene + " --faces --samples 2 --out /proc/hrad-no-such/r.csv",
      "/proc/hrad-no-such"},
+    // Unbounded or absurd work, refused before meshing with the estimate and the option to change
+    // (solvers/work_estimate.h); each ran until killed before.
+    {"solve_aeps_1e_300", {}, "solve " + kCornell + " --aeps 1e-300 --out {d}/s.ply --report {d}/r.json", "raise --aeps"},
+    {"solve_aeps_1e_6", {}, "solve " + kCornell + " --aeps 1e-6 --out {d}/s.ply", "raise --aeps (now 1e-06)"},
+    {"solve_substructure_tiny_max_area", {}, "solve " + kCornell + " --method substructure --max-area 1e-4 --out {d}/s.ply",
+     "raise --max-area"},
+    {"solve_visibility_samples_million", {}, "solve " + kCornell + " --visibility-samples 1000000 --out {d}/s.ply",
+     "--visibility-samples"},
+    // Sizes within the options' ranges that do not fit this process (ulimit -v 4 GB): refused up front,
+    // not std::bad_alloc.
+    {"render_larger_than_memory", {}, "--version >/dev/null; ulimit -v 4000000; '" HRAD_EXECUTABLE
+     "' render {d}/missing.ply --out {d}/i.png --width 16384 --height 16384", "--width"},
+    {"scene_generate_larger_than_memory", {}, "--version >/dev/null; ulimit -v 4000000; '" HRAD_EXECUTABLE
+     "' scene generate --polygons 10000000 --out {d}/g.obj", "--polygons"},
     // Numbers CLI11 would take: a seed beyond 64 bits, an empty list.
     {"scene_seed_beyond_64_bits", {}, "scene generate --polygons 100 --seed 99999999999999999999 --out {d}/g.obj",
      "--seed"},

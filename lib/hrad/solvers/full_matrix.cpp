@@ -15,6 +15,7 @@
 #include "hrad/core/huge_page_allocator.h"
 #include "hrad/core/progress.h"
 #include "hrad/solvers/solver_context.h"
+#include "hrad/solvers/work_estimate.h"
 
 namespace hrad {
 namespace {
@@ -57,8 +58,7 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
   // The dense F and, for LU, one system matrix at a time: refuse up front what cannot fit rather
   // than fail in the allocator halfway through. Elements before meshing: a patch of area A splits
   // into quarters until they are <= max_area (about: quads that are not parallelograms split unevenly).
-  double estimate = 0.0;
-  for (const Patch& p : scene.patches) estimate += std::pow(4.0, std::max(0.0, std::ceil(std::log(p.area / max_area) / std::log(4.0))));
+  const double estimate = uniform_elements(scene, max_area);
   const double needed = 2.0 * estimate * estimate * sizeof(double);
   const double physical = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
   if (physical > 0.0 && needed > 0.8 * physical)

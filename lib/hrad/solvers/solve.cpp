@@ -5,10 +5,12 @@
 #include <fmt/format.h>
 
 #include "hrad/core/error.h"
+#include "hrad/core/memory.h"
 #include "hrad/solvers/clustered_hierarchical.h"
 #include "hrad/solvers/full_matrix.h"
 #include "hrad/solvers/hierarchical.h"
 #include "hrad/solvers/substructuring.h"
+#include "hrad/solvers/work_estimate.h"
 
 namespace hrad {
 namespace {
@@ -53,8 +55,9 @@ void validate_options(const SolveOptions& o) {
     throw Error(fmt::format("--effects: unknown mode {}", static_cast<int>(o.effects)));
   if (o.kernel != FormFactorKernel::kAnalytic && o.kernel != FormFactorKernel::kPointContour)
     throw Error(fmt::format("--kernel: unknown kernel {}", static_cast<int>(o.kernel)));
-  if (o.visibility_samples < 1)
-    throw Error(fmt::format("--visibility-samples must be >= 1, got {}", o.visibility_samples));
+  if (o.visibility_samples < 1 || o.visibility_samples > kMaxVisibilitySamples)
+    throw Error(fmt::format("--visibility-samples must be in [1, {}], got {}", kMaxVisibilitySamples,
+                            o.visibility_samples));
   if (o.clustering != Clustering::kAuto && o.clustering != Clustering::kOn && o.clustering != Clustering::kOff)
     throw Error(fmt::format("--clustering: unknown mode {}", static_cast<int>(o.clustering)));
   if (o.threads < 0) throw Error(fmt::format("--threads must be >= 0 (0 = all cores), got {}", o.threads));
@@ -62,6 +65,8 @@ void validate_options(const SolveOptions& o) {
 
 SolveSummary solve(const Scene& scene, const SolveOptions& options, Solution* out) {
   validate_options(options);
+  // Before any meshing: refuse what cannot fit or would take days, naming the option to change.
+  check_work(estimate_work(scene, options), to_string(options.method), available_memory_bytes());
   switch (options.method) {
     case Method::kFull:
       return solve_full_matrix(scene, options, out);
