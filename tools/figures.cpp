@@ -35,7 +35,7 @@
 #include "hrad/core/error.h"
 #include "hrad/experiments/figures.h"
 #include "hrad/io/atomic_file.h"
-#include "hrad/io/obj_reader.h"
+#include "hrad/io/scene_reader.h"
 #include "hrad/io/png_writer.h"
 #include "hrad/report/report_json.h"
 #include "hrad/render/render.h"
@@ -67,7 +67,7 @@ std::set<int> parse_only(const std::string& text) {
 
 Scene load(const std::string& path) {
   std::vector<std::string> warnings;
-  Scene scene = read_obj_scene(path, &warnings);
+  Scene scene = read_scene(path, &warnings);
   for (const auto& w : warnings) std::cerr << w << "\n";
   return scene;
 }

@@ -7,19 +7,22 @@
 //   emitters   the faces whose material emits
 //   area       total area, in the scene's unit squared
 //   materials  {name: {reflectance: [r,g,b], emission: [r,g,b]}}
-// Warnings (skipped or split faces) go to stderr.
+// Warnings go to stderr: skipped or split faces, faces without a material, and what would make the
+// answer look wrong (no emitter, lights exported without emission, normals facing out of the room,
+// no light reaching any surface: core/scene_checks.h).
 #include <iostream>
 
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "hrad/io/obj_reader.h"
+#include "hrad/core/scene_checks.h"
+#include "hrad/io/scene_reader.h"
 #include "hrad/io/scene_json.h"
 
 namespace hrad::cli {
 
 void add_info_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("info", "Print a summary of a scene (OBJ + MTL)");
+  auto* cmd = app.add_subcommand("info", "Print a summary of a scene (OBJ + MTL, PLY or glTF)");
   struct Args {
     std::string scene;
     bool json = false;
@@ -29,8 +32,9 @@ void add_info_command(CLI::App& app) {
   cmd->add_flag("--json", args->json, "Print the summary as JSON");
   cmd->callback([args] {
     std::vector<std::string> warnings;
-    const Scene scene = read_obj_scene(args->scene, &warnings);
+    const Scene scene = read_scene(args->scene, &warnings);
     for (const std::string& w : warnings) std::cerr << w << "\n";
+    for (const std::string& w : scene_warnings(scene)) std::cerr << scene.path << ": warning: " << w << "\n";
     const nlohmann::json j = scene_summary_json(scene);
     if (args->json) {
       std::cout << j.dump(2) << "\n";

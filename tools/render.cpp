@@ -36,7 +36,7 @@
 #include "hrad/core/memory.h"
 #include "hrad/analysis/error_metrics.h"
 #include "hrad/io/atomic_file.h"
-#include "hrad/io/obj_reader.h"
+#include "hrad/io/scene_reader.h"
 #include "hrad/io/png_writer.h"
 #include "hrad/io/solution_ply.h"
 #include "hrad/render/face_geometry.h"
@@ -142,7 +142,7 @@ void add_render_command(CLI::App& app) {
     options.cull_back_faces = !args->both_sides;
     Image image;
     if (!args->reference.empty()) {
-      const Scene scene = read_obj_scene(args->scene);
+      const Scene scene = read_scene(args->scene);
       std::vector<std::pair<std::string, std::string>> inputs;
       for (const std::string& f : scene.files) inputs.emplace_back("an input of --scene", f);
       outputs.check_inputs(inputs);

@@ -41,9 +41,10 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "hrad/core/scene_checks.h"
 #include "hrad/core/error.h"
 #include "hrad/io/atomic_file.h"
-#include "hrad/io/obj_reader.h"
+#include "hrad/io/scene_reader.h"
 #include "hrad/report/report_json.h"
 #include "hrad/io/solution_ply.h"
 #include "hrad/render/tone_map.h"
@@ -117,7 +118,8 @@ void add_solve_command(CLI::App& app) {
     outputs.check_inputs({{"the scene", args->scene}});
 
     std::vector<std::string> warnings;
-    const Scene scene = read_obj_scene(args->scene, &warnings);
+    const Scene scene = read_scene(args->scene, &warnings);
+    for (const std::string& w : scene_warnings(scene)) warnings.push_back(scene.path + ": warning: " + w);
     for (const std::string& w : warnings) std::cerr << w << "\n";
     std::vector<std::pair<std::string, std::string>> inputs;
     for (const std::string& f : scene.files) inputs.emplace_back("an input of the scene", f);
@@ -125,7 +127,11 @@ void add_solve_command(CLI::App& app) {
     Solution solution;
     const SolveSummary summary = solve(scene, o, &solution);
 
-    if (!args->report.empty()) write_json_file(args->report, solve_report_json(scene, o, summary, solution));
+    if (!args->report.empty()) {
+      nlohmann::json report = solve_report_json(scene, o, summary, solution);
+      report["warnings"] = warnings;  // the reader's and the scene checks', as printed on stderr
+      write_json_file(args->report, report);
+    }
     if (!args->out.empty()) {
       double exposure = args->exposure;
       if (exposure <= 0.0) {

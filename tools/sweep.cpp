@@ -33,7 +33,7 @@
 #include "hrad/experiments/reference_samples.h"
 #include "hrad/experiments/sweep.h"
 #include "hrad/io/atomic_file.h"
-#include "hrad/io/obj_reader.h"
+#include "hrad/io/scene_reader.h"
 #include "hrad/report/report_json.h"
 #include "hrad/solvers/work_estimate.h"
 #include "plot.h"
@@ -112,7 +112,7 @@ void add_sweep_command(CLI::App& app) {
         inputs.emplace_back("an input of --reference-from", args->reference_from + "/" + name);
     outputs.check_inputs(inputs);
     std::vector<std::string> warnings;
-    const Scene scene = read_obj_scene(args->scene, &warnings);
+    const Scene scene = read_scene(args->scene, &warnings);
     for (const auto& w : warnings) std::cerr << w << "\n";
     inputs.clear();
     for (const std::string& f : scene.files) inputs.emplace_back("an input of the scene", f);

@@ -1,6 +1,9 @@
 #include "hrad/io/obj_reader.h"
 
 #include <cctype>
+#include <optional>
+#include <charconv>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +20,7 @@
 #include "hrad/core/error.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/io/input_file.h"
+#include "hrad/io/scene_faces.h"
 
 // tinyobjloader does the parsing; this file adds what a radiosity scene needs on top of it:
 // the line of every statement (for messages), range checks, and the patch rules of obj_reader.h.
@@ -38,54 +42,145 @@ std::vector<std::string> tokens_of(const std::string& line) {
   return t;
 }
 
+std::string trim(const std::string& text) {
+  const std::size_t a = text.find_first_not_of(" \t");
+  if (a == std::string::npos) return "";
+  return text.substr(a, text.find_last_not_of(" \t") - a + 1);
+}
+
+/// The rest of a statement after its keyword, trimmed, without surrounding double quotes.
+std::string argument_of(const std::string& line, const std::string& key) {
+  std::string rest = trim(trim(line).substr(key.size()));
+  if (rest.size() >= 2 && rest.front() == '"' && rest.back() == '"') rest = rest.substr(1, rest.size() - 2);
+  return rest;
+}
+
 std::vector<std::string> split_lines(const std::string& path, const std::string& bytes) {
   std::vector<std::string> lines;
   std::istringstream in(bytes);
   for (std::string line; std::getline(in, line);) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    // A UTF-8 byte order mark (Windows exporters write one) is not part of the first statement.
+    if (lines.empty() && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
     if (line.find('\0') != std::string::npos) throw_at(path, lines.size() + 1, "binary data in a text file");
     // tinyobjloader ends a line at a lone carriage return too: refuse what the two passes would
     // read differently (a fuzzer found "v\r 5 0 0" counted as a vertex here and not there).
     if (line.find('\r') != std::string::npos) throw_at(path, lines.size() + 1, "carriage return inside a line");
+    // A comment after a statement ("f 1 2 3 # back wall"): tinyobjloader would read '#' as an index.
+    if (const std::size_t hash = line.find('#'); hash != std::string::npos && hash > 0) {
+      const std::size_t first = line.find_first_not_of(" \t");
+      if (first < hash && (line[hash - 1] == ' ' || line[hash - 1] == '\t')) line.erase(hash);
+    }
     lines.push_back(std::move(line));
   }
   return lines;
 }
 
-/// Checks that tokens [first, first + count) of `t` are finite numbers within `limit`.
-void check_numbers(const std::string& file, std::size_t line, const std::vector<std::string>& t,
-                   std::size_t first, std::size_t count, double limit) {
-  if (t.size() < first + count)
-    throw_at(file, line, fmt::format("'{}' needs {} numbers, got {}", t[0], count, t.size() - first));
-  for (std::size_t i = first; i < first + count; ++i) {
-    char* end = nullptr;
-    const double x = std::strtod(t[i].c_str(), &end);
-    if (end == t[i].c_str() || *end != '\0') throw_at(file, line, fmt::format("'{}' is not a number", t[i]));
-    if (!std::isfinite(x)) throw_at(file, line, fmt::format("'{}' is not a finite number", t[i]));
-    if (std::abs(x) > limit) throw_at(file, line, fmt::format("'{}' is out of range (|x| > {:g})", t[i], limit));
-  }
+std::string join_lines(const std::vector<std::string>& lines) {
+  std::string text;
+  for (const std::string& l : lines) text += l + "\n";
+  return text;
 }
 
-// Where each statement of the OBJ stands, found by one pass over its lines.
-struct ObjLines {
-  std::vector<std::size_t> vertex;   // line of the k-th `v`
-  std::vector<std::size_t> face;     // line of the k-th `f`
-  std::vector<std::pair<std::size_t, std::string>> mtllib;  // line and file name
-  std::map<std::string, std::size_t> first_usemtl;          // material name -> first `usemtl` line
+/// A decimal number as both passes read it: std::from_chars, an optional leading '+', nothing else
+/// (strtod would read the hex float "0x1p2" as 4, tinyobjloader reads it as 0).
+std::optional<double> parse_number(const std::string& token) {
+  const char* first = token.data();
+  const char* last = first + token.size();
+  if (first != last && *first == '+') ++first;
+  double x = 0.0;
+  const auto [end, ec] = std::from_chars(first, last, x, std::chars_format::general);
+  if (ec != std::errc() || end != last) return std::nullopt;
+  return x;
+}
+
+/// Digits after the decimal point of a number printed in fixed notation ("0.123456" -> 6), or -1
+/// (no point, or an exponent).
+int fixed_decimals(const std::string& token) {
+  const std::size_t dot = token.find('.');
+  if (dot == std::string::npos || token.find_first_of("eE") != std::string::npos) return -1;
+  return static_cast<int>(token.size() - dot - 1);
+}
+
+/// Checks that tokens [first, first + count) of `t` are finite numbers within `limit`, and returns them.
+std::vector<double> check_numbers(const std::string& file, std::size_t line, const std::vector<std::string>& t,
+                                  std::size_t first, std::size_t count, double limit) {
+  if (t.size() < first + count)
+    throw_at(file, line, fmt::format("'{}' needs {} numbers, got {}", t[0], count, t.size() - first));
+  std::vector<double> values;
+  for (std::size_t i = first; i < first + count; ++i) {
+    const std::optional<double> x = parse_number(t[i]);
+    if (!x) throw_at(file, line, fmt::format("'{}' is not a number", t[i]));
+    if (!std::isfinite(*x)) throw_at(file, line, fmt::format("'{}' is not a finite number", t[i]));
+    if (std::abs(*x) > limit) throw_at(file, line, fmt::format("'{}' is out of range (|x| > {:g})", t[i], limit));
+    values.push_back(*x);
+  }
+  return values;
+}
+
+// Material names reach tinyobjloader as short ids: it takes the whole rest of a `newmtl` line but
+// only the first word of a `usemtl` line, so "Material 1" (spaces, as Blender and SketchUp write
+// names) or a quoted name would not match. Both files are rewritten line for line with the ids.
+class MaterialNames {
+ public:
+  std::string id_of(const std::string& name) {
+    const auto [it, inserted] = ids_.try_emplace(name, "m" + std::to_string(ids_.size()));
+    if (inserted) names_[it->second] = name;
+    return it->second;
+  }
+  std::string name_of(const std::string& id) const {
+    const auto it = names_.find(id);
+    return it == names_.end() ? id : it->second;
+  }
+
+ private:
+  std::map<std::string, std::string> ids_, names_;
 };
 
-ObjLines scan_obj(const std::string& path, const std::string& bytes, const ObjReadOptions& options) {
-  const std::vector<std::string> lines = split_lines(path, bytes);
+// Where each statement of the OBJ stands, found by one pass over its (rewritten) lines.
+struct ObjLines {
+  std::vector<std::string> text;     // the lines as tinyobjloader reads them
+  std::vector<std::size_t> vertex;   // line of the k-th `v`
+  std::vector<double> coordinates;   // x y z of the k-th `v`, as this pass read them
+  int decimals = -1;                 // the decimals every fixed-notation coordinate has; -2 when they differ
+  std::vector<std::size_t> face;     // line of the k-th `f`
+  std::vector<std::vector<std::string>> mtllib;  // the files of the k-th `mtllib` line
+  std::map<std::string, std::size_t> first_usemtl;  // material id -> first `usemtl` line
+};
+
+/// The files an `mtllib` line names: the whole argument when such a file exists (a name with
+/// spaces, as Blender writes "my scene.mtl"), else its words (several libraries on one line).
+std::vector<std::string> mtllib_files(const std::string& path, std::size_t line, const std::string& argument) {
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (std::filesystem::exists(dir / argument, ec)) return {argument};
+  std::vector<std::string> files;
+  for (std::string name : tokens_of(argument)) {
+    if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = name.substr(1, name.size() - 2);
+    if (!std::filesystem::exists(dir / name, ec)) throw_at(path, line, fmt::format("cannot open material library '{}'", name));
+    files.push_back(name);
+  }
+  return files;
+}
+
+ObjLines scan_obj(const std::string& path, const std::string& bytes, const ObjReadOptions& options, MaterialNames& names) {
   ObjLines at;
+  at.text = split_lines(path, bytes);
   bool any_statement = false;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
+  for (std::size_t i = 0; i < at.text.size(); ++i) {
     const std::size_t line = i + 1;
-    const std::vector<std::string> t = tokens_of(lines[i]);
+    const std::vector<std::string> t = tokens_of(at.text[i]);
     if (t.empty() || t[0][0] == '#') continue;
     any_statement = true;
     const std::string& key = t[0];
     if (key == "v") {
-      check_numbers(path, line, t, 1, 3, options.max_abs_coordinate);
+      // 3 coordinates, optionally a weight or a colour after them (ignored).
+      const std::vector<double> x = check_numbers(path, line, t, 1, 3, options.max_abs_coordinate);
+      at.coordinates.insert(at.coordinates.end(), x.begin(), x.end());
+      for (int k = 1; k <= 3; ++k) {
+        const int d = fixed_decimals(t[static_cast<std::size_t>(k)]);
+        if (d >= 0) at.decimals = at.decimals == -1 || at.decimals == d ? d : -2;
+      }
       at.vertex.push_back(line);
     } else if (key == "f") {
       if (t.size() < 4) throw_at(path, line, fmt::format("face has {} vertices, needs at least 3", t.size() - 1));
@@ -100,11 +195,15 @@ ObjLines scan_obj(const std::string& path, const std::string& bytes, const ObjRe
       }
       at.face.push_back(line);
     } else if (key == "mtllib") {
-      if (t.size() < 2) throw_at(path, line, "mtllib names no file");
-      at.mtllib.emplace_back(line, t[1]);
+      const std::string argument = argument_of(at.text[i], key);
+      if (argument.empty()) throw_at(path, line, "mtllib names no file");
+      at.mtllib.push_back(mtllib_files(path, line, argument));
+      at.text[i] = "mtllib " + std::to_string(at.mtllib.size() - 1);  // MtlReader reads the list
     } else if (key == "usemtl") {
-      if (t.size() < 2) throw_at(path, line, "usemtl names no material");
-      at.first_usemtl.emplace(t[1], line);
+      const std::string name = argument_of(at.text[i], key);
+      if (name.empty()) throw_at(path, line, "usemtl names no material");
+      at.text[i] = "usemtl " + names.id_of(name);
+      at.first_usemtl.emplace(names.id_of(name), line);
     } else if (key == "vt" || key == "vn" || key == "vp" || key == "o" || key == "g" || key == "s" ||
                key == "l" || key == "p") {
       // texture coordinates, normals, groups and smoothing are accepted; lines and points ignored
@@ -122,43 +221,61 @@ ObjLines scan_obj(const std::string& path, const std::string& bytes, const ObjRe
 // Lines of an MTL file: where each material starts and where its Kd and Ke stand.
 struct MtlLines {
   std::string path;
+  std::vector<std::string> text;  // the lines as tinyobjloader reads them
   std::map<std::string, std::size_t> newmtl, kd, ke;
+  std::map<std::string, Rgb> kd_value, ke_value;  // as this pass read them (tinyobjloader's parser is off by an ulp at times)
 };
 
-MtlLines scan_mtl(const std::string& path, const std::string& bytes) {
-  const std::vector<std::string> lines = split_lines(path, bytes);
+MtlLines scan_mtl(const std::string& path, const std::string& bytes, MaterialNames& names) {
   MtlLines at;
   at.path = path;
+  at.text = split_lines(path, bytes);
   std::string current;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
+  for (std::size_t i = 0; i < at.text.size(); ++i) {
     const std::size_t line = i + 1;
-    const std::vector<std::string> t = tokens_of(lines[i]);
+    const std::vector<std::string> t = tokens_of(at.text[i]);
     if (t.empty() || t[0][0] == '#') continue;
     if (t[0] == "newmtl") {
-      if (t.size() < 2) throw_at(path, line, "newmtl names no material");
-      current = t[1];
+      const std::string name = argument_of(at.text[i], "newmtl");
+      if (name.empty()) throw_at(path, line, "newmtl names no material");
+      current = names.id_of(name);
       at.newmtl[current] = line;
-    } else if (t[0] == "Kd" || t[0] == "Ke") {
+      at.text[i] = "newmtl " + current;
+    } else if (t[0] == "Kd" || t[0] == "Ke" || t[0] == "Ka" || t[0] == "Ks" || t[0] == "Tf") {
       if (current.empty()) throw_at(path, line, fmt::format("'{}' before any newmtl", t[0]));
-      check_numbers(path, line, t, 1, 3, 1e30);
-      (t[0] == "Kd" ? at.kd : at.ke)[current] = line;
+      // The MTL format allows one value for all three channels ("Kd 0.7"); tinyobjloader would read
+      // the missing ones as 0, so the line is given three.
+      if (t.size() == 2) at.text[i] = fmt::format("{} {} {} {}", t[0], t[1], t[1], t[1]);
+      const std::vector<double> x = check_numbers(path, line, tokens_of(at.text[i]), 1, 3, 1e30);
+      if (t[0] == "Kd") {
+        at.kd[current] = line;
+        at.kd_value[current] = Rgb(x[0], x[1], x[2]);
+      }
+      if (t[0] == "Ke") {
+        at.ke[current] = line;
+        at.ke_value[current] = Rgb(x[0], x[1], x[2]);
+      }
     }
   }
   return at;
 }
 
-// Reads MTL files from the OBJ's folder, remembering where each was found for messages.
+// Reads the MTL files of the k-th `mtllib` line (tinyobjloader calls it with "k": see scan_obj),
+// all of them, from the OBJ's folder, remembering where each was found for messages.
 class MtlReader : public tinyobj::MaterialReader {
  public:
-  explicit MtlReader(std::string dir) : dir_(std::move(dir)) {}
+  MtlReader(std::string dir, const ObjLines& obj, MaterialNames& names) : dir_(std::move(dir)), obj_(obj), names_(names) {}
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* ids, std::string* warn, std::string* err) override {
-    const std::string path = (std::filesystem::path(dir_) / name).string();
-    const std::string bytes = read_input_file(path);
-    scans.push_back(scan_mtl(path, bytes));  // throws on a malformed file
-    files.push_back(path);
-    std::istringstream in(bytes);
-    tinyobj::LoadMtl(ids, materials, &in, warn, err);
+    const std::size_t k = static_cast<std::size_t>(std::stoul(name));
+    for (const std::string& file : obj_.mtllib.at(k)) {
+      const std::string path = (std::filesystem::path(dir_) / file).string();
+      if (std::find(files.begin(), files.end(), path) != files.end()) continue;
+      scans.push_back(scan_mtl(path, read_input_file(path), names_));  // throws on a malformed file
+      files.push_back(path);
+      std::istringstream in(join_lines(scans.back().text));
+      tinyobj::LoadMtl(ids, materials, &in, warn, err);
+    }
     return true;
   }
   std::vector<MtlLines> scans;
@@ -166,68 +283,50 @@ class MtlReader : public tinyobj::MaterialReader {
 
  private:
   std::string dir_;
+  const ObjLines& obj_;
+  MaterialNames& names_;
 };
 
-const MtlLines* find_material(const std::vector<MtlLines>& scans, const std::string& name) {
+const MtlLines* find_material(const std::vector<MtlLines>& scans, const std::string& id) {
   for (const MtlLines& s : scans)
-    if (s.newmtl.count(name)) return &s;
+    if (s.newmtl.count(id)) return &s;
   return nullptr;
 }
 
-Material make_material(const tinyobj::material_t& m, const MtlLines& at) {
+Material make_material(const tinyobj::material_t& m, const MtlLines& at, const MaterialNames& names) {
   Material out;
-  out.name = m.name;
-  out.reflectance = Rgb(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
-  out.emission = Rgb(m.emission[0], m.emission[1], m.emission[2]);
+  out.name = names.name_of(m.name);
+  const auto kd = at.kd_value.find(m.name);
+  const auto ke = at.ke_value.find(m.name);
+  out.reflectance = kd != at.kd_value.end() ? kd->second : Rgb(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
+  out.emission = ke != at.ke_value.end() ? ke->second : Rgb(m.emission[0], m.emission[1], m.emission[2]);
   const auto line_of = [&](const std::map<std::string, std::size_t>& where) {
     const auto it = where.find(m.name);
     return it != where.end() ? it->second : at.newmtl.at(m.name);
   };
   if ((out.reflectance < 0.0).any() || (out.reflectance >= 1.0).any())
     throw_at(at.path, line_of(at.kd),
-             fmt::format("material '{}': reflectance Kd {} {} {} is outside [0, 1)", m.name, out.reflectance[0],
+             fmt::format("material '{}': reflectance Kd {} {} {} is outside [0, 1)", out.name, out.reflectance[0],
                          out.reflectance[1], out.reflectance[2]));
   if ((out.emission < 0.0).any())
     throw_at(at.path, line_of(at.ke),
-             fmt::format("material '{}': emission Ke {} {} {} is negative", m.name, out.emission[0], out.emission[1],
+             fmt::format("material '{}': emission Ke {} {} {} is negative", out.name, out.emission[0], out.emission[1],
                          out.emission[2]));
   return out;
-}
-
-void add_patch(Scene& scene, int face, std::vector<Vec3> vertices) {
-  Patch p;
-  const Vec3 n = newell_normal(vertices);
-  p.area = 0.5 * n.norm();
-  p.normal = n.normalized();
-  p.vertices = std::move(vertices);
-  p.material = scene.faces[face].material;
-  p.group = scene.faces[face].group;
-  p.face = face;
-  scene.faces[face].patches.push_back(static_cast<int>(scene.patches.size()));
-  scene.faces[face].area += p.area;
-  scene.patches.push_back(std::move(p));
 }
 
 }  // namespace
 
 Scene read_obj_scene(const std::string& path, std::vector<std::string>* warnings, const ObjReadOptions& options) {
-  const auto warn = [&](std::size_t line, const std::string& message) {
-    if (warnings) warnings->push_back(fmt::format("{}:{}: warning: {}", path, line, message));
-  };
-  const std::string bytes = read_input_file(path);
-  const ObjLines at = scan_obj(path, bytes, options);
-  for (const auto& [line, name] : at.mtllib) {
-    const std::string mtl = (std::filesystem::path(path).parent_path() / name).string();
-    std::error_code ec;
-    if (!std::filesystem::exists(mtl, ec)) throw_at(path, line, fmt::format("cannot open material library '{}'", name));
-  }
+  MaterialNames names;
+  const ObjLines at = scan_obj(path, read_input_file(path), options, names);
 
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warn_text, err_text;
-  MtlReader mtl_reader(std::filesystem::path(path).parent_path().string());
-  std::istringstream in(bytes);
+  MtlReader mtl_reader(std::filesystem::path(path).parent_path().string(), at, names);
+  std::istringstream in(join_lines(at.text));
   const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn_text, &err_text, &in, &mtl_reader,
                                    /*triangulate=*/false);
   if (!ok || !err_text.empty()) {
@@ -235,71 +334,64 @@ Scene read_obj_scene(const std::string& path, std::vector<std::string>* warnings
     throw_at(path, 0, first.empty() ? "cannot be read as OBJ" : first);
   }
 
-  // The line scan validated every face index against its own vertex count: it must be the parser's.
-  if (attrib.vertices.size() != 3 * at.vertex.size())
+  // The line scan validated every face index against its own vertices: they must be the parser's.
+  // Positions are the scan's numbers (std::from_chars, correctly rounded; tinyobjloader's own parser
+  // reads 0.057678 one ulp off); the parser's must agree to far better than any real difference
+  // (the hex float "0x1p2": 4 for strtod, 0 for tinyobjloader), else the file is refused.
+  if (attrib.vertices.size() != at.coordinates.size())
     throw_at(path, 0, fmt::format("{} `v` statements, but {} vertices parsed", at.vertex.size(), attrib.vertices.size() / 3));
+  for (std::size_t i = 0; i < at.coordinates.size(); ++i)
+    if (!(std::abs(attrib.vertices[i] - at.coordinates[i]) <= 1e-12 * std::abs(at.coordinates[i])))
+      throw_at(path, at.vertex[i / 3],
+               fmt::format("coordinate read as {} by the line scan but {} by the OBJ parser", at.coordinates[i],
+                           attrib.vertices[i]));
 
   Scene scene;
   scene.path = path;
   scene.files.push_back(path);
   scene.files.insert(scene.files.end(), mtl_reader.files.begin(), mtl_reader.files.end());
   std::map<int, int> material_index;  // tinyobj id -> scene id, only materials faces use
+  // The file's printed precision: an exporter writing every coordinate with the same d >= 3 decimals
+  // (Blender: 6, "%.6f") rounded them to 10^-d; a file printing shortest round-trip numbers (or few
+  // decimals, as hand-written files and the published Cornell box do) is taken as exact.
+  const double step = at.decimals >= 3 ? std::pow(10.0, -at.decimals) : 0.0;
+  detail::FaceTallies tallies;
   for (const tinyobj::shape_t& shape : shapes) {
     const tinyobj::mesh_t& mesh = shape.mesh;
     std::size_t offset = 0;
     for (std::size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
       const std::size_t face_number = scene.faces.size();
       if (face_number >= at.face.size()) throw_at(path, 0, "more faces parsed than `f` statements");
-      const std::size_t line = at.face[face_number];
-      const int mat = mesh.material_ids[f];
-      if (mat < 0) throw_at(path, line, "face has no material (no usemtl before it, or the name is not in the MTL)");
-      if (!material_index.count(mat)) {
-        const MtlLines* where = find_material(mtl_reader.scans, materials[mat].name);
-        if (!where) throw_at(path, line, fmt::format("material '{}' is not defined", materials[mat].name));
-        material_index[mat] = static_cast<int>(scene.materials.size());
-        scene.materials.push_back(make_material(materials[mat], *where));
-      }
       InputFace face;
       face.group = shape.name;
-      face.material = material_index[mat];
-      face.line = line;
-      scene.faces.push_back(face);
-
+      face.line = at.face[face_number];
+      const int mat = mesh.material_ids[f];
+      if (mat < 0) {
+        // No usemtl before the face, or a name no MTL defines: the default material, with a warning.
+        face.material = detail::default_material(scene, face.line, tallies);
+      } else {
+        if (!material_index.count(mat)) {
+          const MtlLines* where = find_material(mtl_reader.scans, materials[mat].name);
+          if (!where)
+            throw_at(path, face.line, fmt::format("material '{}' is not defined", names.name_of(materials[mat].name)));
+          material_index[mat] = static_cast<int>(scene.materials.size());
+          scene.materials.push_back(make_material(materials[mat], *where, names));
+        }
+        face.material = material_index[mat];
+      }
       std::vector<Vec3> v;
       for (std::size_t k = 0; k < mesh.num_face_vertices[f]; ++k) {
         const int vi = mesh.indices[offset + k].vertex_index;
         if (vi < 0 || 3 * static_cast<std::size_t>(vi) + 2 >= attrib.vertices.size())
-          throw_at(path, line, fmt::format("face index {} out of range", vi + 1));
-        const Vec3 x(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1], attrib.vertices[3 * vi + 2]);
-        if (v.empty() || x != v.back()) v.push_back(x);
+          throw_at(path, face.line, fmt::format("face index {} out of range", vi + 1));
+        v.emplace_back(at.coordinates[3 * vi], at.coordinates[3 * vi + 1], at.coordinates[3 * vi + 2]);
       }
       offset += mesh.num_face_vertices[f];
-      while (v.size() > 1 && v.front() == v.back()) v.pop_back();
-
-      const int fi = static_cast<int>(face_number);
-      const double diameter = v.size() >= 3 ? polygon_diameter(v) : 0.0;
-      const Vec3 n = v.size() >= 3 ? newell_normal(v) : Vec3::Zero();
-      // Zero area: relative to the diameter so that the test does not depend on the unit of length.
-      if (v.size() < 3 || !(0.5 * n.norm() > 1e-14 * diameter * diameter)) {
-        warn(line, "zero-area face skipped");
-        continue;
-      }
-      const Vec3 unit = n.normalized();
-      const bool planar = planarity_deviation(v, unit) <= options.planarity_tolerance * diameter;
-      if (!planar)
-        warn(line, fmt::format("face is non-planar by {:.3g} (diameter {:.3g}): split into triangles",
-                               planarity_deviation(v, unit), diameter));
-      if (planar && v.size() <= 4 && is_convex(v, unit)) {
-        add_patch(scene, fi, v);
-        continue;
-      }
-      for (const auto& tri : triangulate(v, unit)) {
-        std::vector<Vec3> t = {v[tri[0]], v[tri[1]], v[tri[2]]};
-        if (0.5 * newell_normal(t).norm() > 1e-14 * diameter * diameter) add_patch(scene, fi, std::move(t));
-      }
+      detail::add_input_face(scene, std::move(face), std::move(v), step, options, tallies);
     }
   }
   if (scene.faces.size() != at.face.size()) throw_at(path, 0, "not every `f` statement could be read as a face");
+  detail::report_tallies(path, tallies, warnings);
   if (scene.patches.empty()) throw_at(path, 0, "no patch left (no face with a positive area)");
   return scene;
 }

@@ -3,12 +3,18 @@
 // Scene format (README "Scene format"):
 //   * each `f` is one input polygon; its front is the side its counter-clockwise vertex order
 //     faces (right-hand rule); the `o`/`g` name before it is its group;
-//   * `usemtl NAME` picks a material of the `mtllib`: `Kd r g b` is the diffuse reflectance
-//     (each channel in [0, 1)), `Ke r g b` the emitted exitance (>= 0);
+//   * `usemtl NAME` picks a material of the `mtllib` (one or several files; names may hold spaces or
+//     be quoted): `Kd r g b` is the diffuse reflectance (each channel in [0, 1); one value means all
+//     three), `Ke r g b` the emitted exitance (>= 0); other MTL statements (Ks, Ns, Ni, d, illum,
+//     the PBR extension's Pr, Pm, Ps, Pc, Pcr, aniso, map_*) are read and ignored; a face without a
+//     material gets kDefaultMaterialName (reflectance kDefaultReflectance) with a warning;
+//   * a UTF-8 byte order mark and comments after a statement are ignored; numbers are decimal (a
+//     hex float is an error naming its line);
 //   * convex triangles and quads become one patch each; other faces are triangulated; a face
 //     whose vertices leave its plane by more than `planarity_tolerance` times its diameter is
 //     split into triangles with a warning; zero-area faces are skipped with a warning.
-// Any other defect is an hrad::Error whose message names the file and line.
+// Repeated warnings of one kind are one line ("N faces ..., the first here"). Any other defect is an
+// hrad::Error whose message names the file and line.
 #pragma once
 
 #include <string>
@@ -18,8 +24,18 @@
 
 namespace hrad {
 
+/// Faces without a material get this one, with a warning.
+inline constexpr const char* kDefaultMaterialName = "default";
+inline constexpr double kDefaultReflectance = 0.5;
+
 struct ObjReadOptions {
-  double planarity_tolerance = 1e-7;  ///< relative to the face's diameter
+  /// Relative to the face's diameter; the tolerance is never below what the file's printed digits
+  /// allow: sqrt(3) times 10^-d when every coordinate is printed with the same d >= 3 decimals
+  /// (Blender writes 6, so a 1 m face off its plane by 1.4e-7 of its diameter is planar). 1e-5: single-precision exporters round at
+  /// ~6e-8 of the coordinates' size, which is ~1e-5 of a face 200x smaller than the scene's extent;
+  /// a bend that size changes no form factor beyond its own order, and truly bent faces (the
+  /// published Cornell box's red wall: 1.5e-3) are still split.
+  double planarity_tolerance = 1e-5;
   double max_abs_coordinate = 1e12;   ///< larger coordinates are rejected as garbage
 };
 

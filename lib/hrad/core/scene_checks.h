@@ -1,0 +1,27 @@
+// Warnings a user can act on, about scenes that read fine but would solve to a wrong-looking answer
+// without a word: `hrad info` and `hrad solve` print them on stderr and the solve report lists them.
+//
+//   * no emitter: nothing emits (no material with Ke > 0), so every radiosity is 0;
+//   * emitters exported without emission: a material whose name says it is a light ("light", "lamp",
+//     "emission", "emissive", "emit", "glow") with Ke 0: Blender's OBJ exporter writes its Emission
+//     shader and its lamps that way;
+//   * faces facing away from the rest: a face with no point of any other face strictly in front of
+//     its plane can neither receive nor send light; when such faces hold most of the area, the
+//     normals point out of the room (the most common modelling mistake), so flip them;
+//   * no light reaching any surface: no emitter has a face in front of it that also has the emitter
+//     in front of it (every emitter faces away from everything).
+// The tests are exact for flat faces (a point in front of a plane, with a tolerance of 1e-9 of the
+// scene's size for points on the plane) and cost O(faces^2) at worst, stopping at the first face in front.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "hrad/core/scene.h"
+
+namespace hrad {
+
+/// One line per finding, without a "warning:" prefix; empty for a sound scene.
+std::vector<std::string> scene_warnings(const Scene& scene);
+
+}  // namespace hrad

@@ -1,0 +1,89 @@
+// Scenes that read fine but would solve to a wrong-looking answer: `hrad info` and `hrad solve` say so
+// on stderr and the solve report lists the warnings (core/scene_checks.h); scenes in other formats
+// and files that are not scenes.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "run_hrad.h"
+
+namespace hrad::test {
+namespace {
+
+// The box [0,2] x [0,1] x [0,1] as Blender exports it, 6 decimals; `flip` reverses every face (the
+// normals then point out of the room); the light is a small quad under the ceiling facing down.
+std::string box_obj(bool flip, const std::string& light_material) {
+  std::string obj =
+      "# Blender v3.4.1 OBJ File: ''\nmtllib box.mtl\no Room\n"
+      "v 0.000000 0.000000 0.000000\nv 2.000000 0.000000 0.000000\nv 2.000000 0.000000 1.000000\n"
+      "v 0.000000 0.000000 1.000000\nv 0.000000 1.000000 0.000000\nv 2.000000 1.000000 0.000000\n"
+      "v 2.000000 1.000000 1.000000\nv 0.000000 1.000000 1.000000\n"
+      "v 0.900000 0.990000 0.400000\nv 1.100000 0.990000 0.400000\nv 1.100000 0.990000 0.600000\n"
+      "v 0.900000 0.990000 0.600000\nusemtl Wall\ns 1\n";
+  const char* faces[] = {"1 4 3 2", "5 6 7 8", "1 2 6 5", "4 8 7 3", "1 5 8 4", "2 3 7 6"};
+  for (const char* f : faces) {
+    std::string face = f;
+    if (flip) face = std::string{face[6], ' ', face[4], ' ', face[2], ' ', face[0]};
+    obj += "f " + face + "\n";
+  }
+  obj += "usemtl " + light_material + "\nf 9 10 11 12\n";
+  return obj;
+}
+
+const std::string kMtl =
+    "# Blender MTL File: 'None'\nnewmtl Wall\nNs 250.000000\nKa 1.000000 1.000000 1.000000\n"
+    "Kd 0.500000 0.500000 0.500000\nKs 0.500000 0.500000 0.500000\nKe 0.000000 0.000000 0.000000\nNi 1.450000\n"
+    "d 1.000000\nillum 2\nnewmtl Lamp\nKd 0.800000 0.800000 0.800000\nKe 10.000000 10.000000 10.000000\nillum 2\n"
+    "newmtl Emission\nKd 0.800000 0.800000 0.800000\nKe 0.000000 0.000000 0.000000\nillum 2\n";
+
+TEST(CliWarnings, SoundBoxIsQuiet) {
+  TempDir dir;
+  dir.write("box.mtl", kMtl);
+  const std::string obj = dir.write("box.obj", box_obj(false, "Lamp"));
+  const RunResult r = run_hrad("info " + obj, dir);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
+TEST(CliWarnings, OutwardNormalsEmitterlessAndZeroEmissionExports) {
+  TempDir dir;
+  dir.write("box.mtl", kMtl);
+  // Normals out of the room: solves to black without a word before.
+  const std::string flipped = dir.write("flipped.obj", box_obj(true, "Lamp"));
+  const RunResult info = run_hrad("info " + flipped, dir);
+  EXPECT_EQ(info.exit_code, 0);
+  EXPECT_NE(info.err.find("6 of 7 patches"), std::string::npos) << info.err;
+  EXPECT_NE(info.err.find("flip them"), std::string::npos) << info.err;
+  // Blender's Emission shader exported as Ke 0: no emitter, and a light-named material that emits nothing.
+  const std::string dark = dir.write("dark.obj", box_obj(false, "Emission"));
+  const RunResult solve = run_hrad("solve " + dark + " --quiet --report " + dir.path("r.json"), dir);
+  EXPECT_EQ(solve.exit_code, 0) << solve.err;
+  EXPECT_NE(solve.err.find("no face emits light"), std::string::npos) << solve.err;
+  EXPECT_NE(solve.err.find("material 'Emission' looks like a light but emits nothing"), std::string::npos) << solve.err;
+  const nlohmann::json report = nlohmann::json::parse(slurp(dir.path("r.json")));
+  ASSERT_TRUE(report.contains("warnings"));
+  EXPECT_EQ(report["warnings"].size(), 2u) << report["warnings"].dump();
+}
+
+TEST(CliWarnings, FaceWithoutMaterialSolvesWithTheDefault) {
+  TempDir dir;
+  dir.write("box.mtl", kMtl);
+  std::string obj = box_obj(false, "Lamp");
+  obj.replace(obj.find("usemtl Wall\n"), 12, "");  // the walls before any usemtl
+  const RunResult r = run_hrad("solve " + dir.write("nomat.obj", obj) + " --quiet", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("nomat.obj:17: warning: this face and 5 more have no material"), std::string::npos) << r.err;
+}
+
+TEST(CliWarnings, SolutionGivenAsASceneSaysWhatItIs) {
+  TempDir dir;
+  dir.write("box.mtl", kMtl);
+  const std::string obj = dir.write("box.obj", box_obj(false, "Lamp"));
+  ASSERT_EQ(run_hrad("solve " + obj + " --quiet --out " + dir.path("s.ply"), dir).exit_code, 0);
+  const RunResult r = run_hrad("solve " + dir.path("s.ply"), dir);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("this is a solution written by 'hrad solve'"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace hrad::test
