@@ -120,8 +120,20 @@ void add_figures_command(CLI::App& app) {
   cmd->add_option("--scenes", args->scenes, "Folder of the bundled scenes (default notebooks_data/scenes)");
   cmd->add_option("--only", args->only, "Comma-separated figure numbers (default: all six)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
-  cmd->callback([args] {
+  cmd->callback([args, cmd] {
     const std::set<int> only = parse_only(args->only);
+    // Without --scenes: the bundled scenes from the current folder (the repository root), else from
+    // the source tree the executable was built in (build/bin/hrad -> notebooks_data/scenes), so that
+    // `hrad figures` works from any folder.
+    if (cmd->count("--scenes") == 0 && !std::filesystem::is_directory(args->scenes)) {
+      const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe");
+      const std::filesystem::path beside = exe.parent_path().parent_path().parent_path() / "notebooks_data" / "scenes";
+      if (!std::filesystem::is_directory(beside))
+        throw Error(fmt::format("--scenes: the bundled scenes are neither in ./notebooks_data/scenes nor in {}: give "
+                                "--scenes DIR",
+                                beside.string()));
+      args->scenes = beside.string();
+    }
     if (args->threads < 0) throw Error(fmt::format("--threads must be >= 0, got {}", args->threads));
     const std::string dir = args->out;
     // Every file goes into a staging folder and is renamed into DIR at the end (io/atomic_file.h).

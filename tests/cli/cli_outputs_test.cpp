@@ -200,3 +200,28 @@ TEST(CliOutputs, TinyPatchInAHugeRoomSurvivesThePly) {
 
 }  // namespace
 }  // namespace hrad::test
+
+namespace hrad::test {
+namespace {
+
+// `hrad figures` from a folder other than the repository root finds the bundled scenes beside the
+// executable's source tree and its plot scripts beside the executable; the plot's PNG gets the
+// umask's mode like every other output (matplotlib's mkstemp made it 0600).
+TEST(CliOutputs, FiguresRunFromAnyFolderAndPlotsGetTheUmasksMode) {
+  TempDir dir;
+  const std::string d = dir.root().string();
+  const RunResult r = run_hrad("--version >/dev/null; cd " + d + " && umask 022 && '" + std::string(HRAD_EXECUTABLE) +
+                                   "' figures --out figs --quick --only 3",
+                               dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  struct stat st {};
+  ASSERT_EQ(stat((d + "/figs/fig3_far.png").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0644u);
+  ASSERT_EQ(stat((d + "/figs/fig3_far.csv").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0644u);
+  for (const auto& e : fs::directory_iterator(d + "/figs"))
+    EXPECT_EQ(e.path().filename().string().find(".hrad-tmp"), std::string::npos) << "staging left behind";
+}
+
+}  // namespace
+}  // namespace hrad::test

@@ -162,7 +162,10 @@ Scene read_gltf_scene(const std::string& path, std::vector<std::string>* warning
         }
         if (idx.size() % 3 != 0)
           throw Error(fmt::format("{}: {}/indices: {} indices do not make triangles", path, pointer, idx.size()));
-        const std::string group = mesh.name.empty() ? fmt::format("mesh_{}", node.mesh) : mesh.name;
+        // The node's name, as exporters name the object (Blender's OBJ `o` lines carry the same name).
+        const std::string group = !node.name.empty() ? node.name
+                                  : !mesh.name.empty() ? mesh.name
+                                                       : fmt::format("mesh_{}", node.mesh);
         for (std::size_t t = 0; t < idx.size(); t += 3) {
           std::vector<Vec3> v;
           for (int k = 0; k < 3; ++k) {

@@ -12,7 +12,8 @@
 //   .gltf, .glb   glTF 2.0 (tinygltf): every triangle of every mesh primitive (mode TRIANGLES) of the
 //                 default scene, node transforms applied; reflectance = the material's
 //                 pbrMetallicRoughness.baseColorFactor (rgb), emission = emissiveFactor times
-//                 KHR_materials_emissive_strength's emissiveStrength (1 without it). Metres, +Y up,
+//                 KHR_materials_emissive_strength's emissiveStrength (1 without it); a face's group is its
+//                 node's name (else its mesh's). Metres, +Y up,
 //                 as OBJ. Errors name the file and the JSON pointer ("/meshes/0/primitives/1").
 // Faces of every format follow the same patch rules (scene_faces.h); for PLY and glTF, a warning's
 // "line" is the face's 1-based number in the file.
