@@ -140,6 +140,7 @@ void add_render_command(CLI::App& app) {
     options.camera = camera ? *camera : default_camera(solution, args->width, args->height);
     options.exposure = cmd->count("--exposure") ? args->exposure : auto_exposure(solution);
     options.cull_back_faces = !args->both_sides;
+    options.progress = [](std::string_view line) { std::cerr << "hrad render: " << line << "\n"; };
     Image image;
     if (!args->reference.empty()) {
       const Scene scene = read_scene(args->scene);

@@ -59,7 +59,7 @@ void add_scene_command(CLI::App& app) {
     outputs.declare("--out", args->out);
     outputs.declare("the material library beside --out", generated_mtl_path(args->out));
     const GeneratedScene scene = generate_scene(o);
-    write_generated_scene(scene, args->out);
+    write_generated_scene(scene, args->out, [](std::string_view line) { std::cerr << "hrad " << line << "\n"; });
     outputs.commit();
     std::cout << fmt::format("{}: {} polygons, {} x {} cells, room {} x {} x {} m\n", args->out, scene.faces.size(),
                              scene.cells_x, scene.cells_z, scene.room_size.x(), scene.room_size.y(), scene.room_size.z());

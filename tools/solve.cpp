@@ -118,7 +118,9 @@ void add_solve_command(CLI::App& app) {
     outputs.check_inputs({{"the scene", args->scene}});
 
     std::vector<std::string> warnings;
-    const Scene scene = read_scene(args->scene, &warnings);
+    ObjReadOptions read_options;
+    read_options.progress = o.progress;
+    const Scene scene = read_scene(args->scene, &warnings, read_options);
     for (const std::string& w : scene_warnings(scene)) warnings.push_back(scene.path + ": warning: " + w);
     for (const std::string& w : warnings) std::cerr << w << "\n";
     std::vector<std::pair<std::string, std::string>> inputs;

@@ -1,6 +1,6 @@
 // One scene exported by Blender twice (tests/io/corpus/blender: OBJ + MTL, and glTF): a sphere light,
 // n-gons, an applied Bevel modifier and smoothing groups. Both files must load as the same geometry
-// and materials, and solve to the same radiosity.
+// and materials (tests/cli/cli_corpus_test.cpp solves both).
 #include <gtest/gtest.h>
 
 #include <map>
@@ -8,25 +8,15 @@
 #include "hrad/core/scene_checks.h"
 #include "hrad/io/input_file.h"
 #include "hrad/io/scene_reader.h"
-#include "hrad/solvers/solve.h"
 
 namespace hrad {
 namespace {
 
 const std::string kDir = std::string(HRAD_SOURCE_DIR) + "/tests/io/corpus/blender/";
 
-struct Group {
-  double area = 0.0;
-  Rgb power = Rgb::Zero();  ///< sum of area x radiosity
-};
-
-std::map<std::string, Group> by_group(const Scene& s, const Solution* solution) {
-  std::map<std::string, Group> g;
-  for (std::size_t p = 0; p < s.patches.size(); ++p) {
-    Group& group = g[s.patches[p].group];
-    group.area += s.patches[p].area;
-    if (solution) group.power += s.patches[p].area * solution->patch_radiosity[p];
-  }
+std::map<std::string, double> area_by_group(const Scene& s) {
+  std::map<std::string, double> g;
+  for (const Patch& p : s.patches) g[p.group] += p.area;
   return g;
 }
 
@@ -53,16 +43,18 @@ TEST(BlenderCorpus, ObjAndGltfLoadAsTheSameSceneWithWhatBlenderWrote) {
   for (const InputFace& f : obj.faces) sphere_faces += f.group == "SphereLight" ? 1 : 0;
   EXPECT_EQ(sphere_faces, 72);
 
-  // The same surfaces: per object, areas agree to the glTF's float32 positions (~1e-7 relative).
-  const auto a = by_group(obj, nullptr), b = by_group(gltf, nullptr);
+  // The same surfaces: per object, areas agree to the OBJ's 6 decimals (each vertex moved by up to
+  // 5e-7 m; on the sphere's ~0.13 m facets an area changes by up to ~1e-5 relative; float32 in the
+  // glTF is ~1e-7).
+  const auto a = area_by_group(obj), b = area_by_group(gltf);
   ASSERT_EQ(a.size(), 4u);
   ASSERT_EQ(b.size(), 4u);
-  for (const auto& [name, g] : a) {
+  for (const auto& [name, area] : a) {
     ASSERT_TRUE(b.count(name)) << name;
-    EXPECT_NEAR(b.at(name).area, g.area, 1e-6 * g.area) << name;
+    EXPECT_NEAR(b.at(name), area, 1e-5 * area) << name;
   }
   // Room 4 x 4 x 3 m: 2 x 16 + 4 x 12 = 80 m^2.
-  EXPECT_NEAR(a.at("Room").area, 80.0, 1e-9);
+  EXPECT_NEAR(a.at("Room"), 80.0, 1e-9);
   // The same materials: base colours 0.6 / 0.1 (float32 in glTF), the light's emission colour 1 x strength 5.
   for (const Material& m : obj.materials) {
     bool found = false;
@@ -77,28 +69,6 @@ TEST(BlenderCorpus, ObjAndGltfLoadAsTheSameSceneWithWhatBlenderWrote) {
   EXPECT_EQ(obj.materials.size(), 4u);
   for (const Material& m : obj.materials)
     if (m.name == "Light") EXPECT_EQ(m.emission[0], 5.0);
-}
-
-// Solved by plain HSA at the defaults, each file's own mesh (quads and n-gons against triangles: 517
-// against 960 elements): per object, the area-mean radiosity agrees within 1%. The bound: HR at the
-// defaults is within a few percent per face of a converged answer (README, clustered against plain
-// HSA: worst face 3% at the defaults), and the two meshes' errors are independent; an object's mean
-// averages them (measured: 0.4% on the cylinder, 0.1% on the room). The light's power is given:
-// equal to rounding.
-TEST(BlenderCorpus, ObjAndGltfSolveToTheSameAnswer) {
-  const Scene obj = read_scene(kDir + "room.obj");
-  const Scene gltf = read_scene(kDir + "room.gltf");
-  SolveOptions o;
-  o.clustering = Clustering::kOff;  // the same method for both (the glTF's 204 patches would cluster)
-  Solution so, sg;
-  solve(obj, o, &so);
-  solve(gltf, o, &sg);
-  const auto a = by_group(obj, &so), b = by_group(gltf, &sg);
-  for (const auto& [name, g] : a) {
-    const Rgb mean_obj = g.power / g.area, mean_gltf = b.at(name).power / b.at(name).area;
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean_gltf[c], mean_obj[c], 0.01 * mean_obj.maxCoeff()) << name << " channel " << c;
-  }
-  EXPECT_NEAR(b.at("SphereLight").power[0], a.at("SphereLight").power[0], 1e-6 * a.at("SphereLight").power[0]);
 }
 
 }  // namespace

@@ -233,7 +233,7 @@ std::string generated_mtl_path(const std::string& obj_path) {
   return std::filesystem::path(obj_path).replace_extension(".mtl").string();
 }
 
-void write_generated_scene(const GeneratedScene& g, const std::string& obj_path) {
+void write_generated_scene(const GeneratedScene& g, const std::string& obj_path, const ProgressSink& progress_sink) {
   namespace fs = std::filesystem;
   const fs::path mtl = generated_mtl_path(obj_path);
   write_file_atomically(mtl.string(), [&](std::ostream& out) {
@@ -248,12 +248,15 @@ void write_generated_scene(const GeneratedScene& g, const std::string& obj_path)
                        g.faces.size(), g.cells_x, g.cells_z, g.room_size.x(), g.room_size.y(), g.room_size.z(),
                        mtl.filename().string());
     int group = -1, material = -1;
+    ProgressReporter progress("scene generate: writing", g.faces.size(), "polygons", progress_sink);
     for (const GeneratedScene::Face& f : g.faces) {
+      progress.advance();
       if (f.group != group) out << "\no " << g.groups[static_cast<std::size_t>(group = f.group)] << "\n";
       if (f.material != material) out << "usemtl " << g.materials[static_cast<std::size_t>(material = f.material)].name << "\n";
       for (const Vec3& v : f.vertices) out << fmt::format("v {} {} {}\n", v.x(), v.y(), v.z());
       out << "f -4 -3 -2 -1\n";
     }
+    progress.finish();
   });
 }
 

@@ -11,6 +11,8 @@
 // (no light is lost through gaps or onto back faces), like the rooms of the closed-form tests.
 #pragma once
 
+#include "hrad/core/progress.h"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -56,6 +58,7 @@ Scene to_scene(const GeneratedScene& generated);
 std::string generated_mtl_path(const std::string& obj_path);
 
 /// Writes `obj_path` and the material library beside it (same stem, .mtl), each atomically.
-void write_generated_scene(const GeneratedScene& generated, const std::string& obj_path);
+void write_generated_scene(const GeneratedScene& generated, const std::string& obj_path,
+                           const ProgressSink& progress = {});
 
 }  // namespace hrad

@@ -167,8 +167,10 @@ ObjLines scan_obj(const std::string& path, const std::string& bytes, const ObjRe
   ObjLines at;
   at.text = split_lines(path, bytes);
   bool any_statement = false;
+  ProgressReporter progress(fmt::format("reading {}", path), at.text.size(), "lines", options.progress);
   for (std::size_t i = 0; i < at.text.size(); ++i) {
     const std::size_t line = i + 1;
+    progress.advance();
     const std::vector<std::string> t = tokens_of(at.text[i]);
     if (t.empty() || t[0][0] == '#') continue;
     any_statement = true;
@@ -215,6 +217,7 @@ ObjLines scan_obj(const std::string& path, const std::string& bytes, const ObjRe
     }
   }
   if (!any_statement) throw_at(path, 0, "empty scene file");
+  progress.finish();
   return at;
 }
 

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "hrad/core/progress.h"
 #include "hrad/core/scene.h"
 
 namespace hrad {
@@ -37,6 +38,8 @@ struct ObjReadOptions {
   /// published Cornell box's red wall: 1.5e-3) are still split.
   double planarity_tolerance = 1e-5;
   double max_abs_coordinate = 1e12;   ///< larger coordinates are rejected as garbage
+  /// Progress lines while reading large files (at most one every 2 s; none for small files).
+  ProgressSink progress;
 };
 
 /// Reads `path` (and the MTL files it names, relative to its folder). Warnings, one line each

@@ -24,7 +24,9 @@ template <class ValueOf>
 void fill_faces(Rasterizer& r, const Solution& s, const RenderOptions& o, ValueOf value_of) {
   std::vector<Vec3> points;
   std::vector<Rgb> values;
+  ProgressReporter progress("render", s.faces.size(), "elements", o.progress);
   for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    progress.advance();
     if (o.cull_back_faces && !faces_camera(s, f, o.camera)) continue;
     points.clear();
     values.clear();
@@ -34,6 +36,7 @@ void fill_faces(Rasterizer& r, const Solution& s, const RenderOptions& o, ValueO
     }
     r.fill_polygon(points, values);
   }
+  progress.finish();
 }
 
 void draw_edges(const Rasterizer& r, const Solution& s, const RenderOptions& o, Image& image, Rgb8 colour) {

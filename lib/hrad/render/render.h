@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "hrad/core/progress.h"
 #include "hrad/core/solution.h"
 #include "hrad/render/camera.h"
 #include "hrad/render/image.h"
@@ -17,6 +18,8 @@ struct RenderOptions {
   double exposure = 1.0;            ///< see tone_map()
   bool cull_back_faces = true;      ///< skip polygons whose front (CCW) side faces away from the camera
   Rgb8 background{0, 0, 0};
+  /// Progress lines for large meshes (core/progress.h: at most one every 2 s; none for quick renders).
+  ProgressSink progress;
 };
 
 /// Axis-aligned bounds (lo, hi) of the solution's vertices.
