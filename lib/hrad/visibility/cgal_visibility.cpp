@@ -204,6 +204,16 @@ class CgalVisibility final : public Visibility {
     return c;
   }
 
+  PairClass classify_among(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b,
+                           const std::vector<int>* candidates, std::vector<int>* occluders) const override {
+    const PairClass c = classify_corners(corners(a), patch_a, corners(b), patch_b, candidates, occluders);
+    count(c);
+    return c;
+  }
+
+  bool segment_blocked_among(const Vec3& a, int patch_a, const Vec3& b, int patch_b,
+                             std::span<const int> occluders) const override;
+
   VisibilityEstimate estimate(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b, int samples,
                               std::uint64_t seed) const override;
 
@@ -217,7 +227,8 @@ class CgalVisibility final : public Visibility {
 
  private:
   bool blocked(const Point& a, int patch_a, const Point& b, int patch_b) const;
-  PairClass classify_corners(std::span<const Point> a, int patch_a, std::span<const Point> b, int patch_b) const;
+  PairClass classify_corners(std::span<const Point> a, int patch_a, std::span<const Point> b, int patch_b,
+                             const std::vector<int>* candidates = nullptr, std::vector<int>* occluders = nullptr) const;
   bool patch_hides(int patch, std::span<const Point> a, std::span<const Point> b) const;
   bool decide_occlusion() const;
   int patch_of(TriangleIterator it) const { return triangle_patch_[it - triangles_.begin()]; }
@@ -371,22 +382,38 @@ bool CgalVisibility::blocked(const Point& a, int patch_a, const Point& b, int pa
   return traversal.blocked();
 }
 
-// Traversal that visits every triangle whose box overlaps the shaft's box and records the patches
-// whose triangles may meet the shaft's interior.
-class ShaftTraversal {
+bool CgalVisibility::segment_blocked_among(const Vec3& a, int patch_a, const Vec3& b, int patch_b,
+                                           std::span<const int> occluders) const {
+  counters().segment_queries.fetch_add(1, std::memory_order_relaxed);
+  const Point pa = to_point(a), pb = to_point(b);
+  if (pa == pb) return false;
+  const SegmentBoxCull cull(pa, pb, magnitude_);
+  for (const int patch : occluders) {
+    if (patch == patch_a || patch == patch_b) continue;
+    const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
+    for (int i = begin; i < end; ++i)
+      if (cull.may_meet(triangle_boxes_[static_cast<std::size_t>(i)]) &&
+          open_segment_meets_triangle(pa, pb, triangles_[static_cast<std::size_t>(i)]))
+        return true;
+  }
+  return false;
+}
+
+// Decides, triangle by triangle, which patches may meet the shaft's interior and records them in
+// `hits`: the test of the top of this file, for the tree traversal and for candidate lists alike.
+class ShaftTest {
  public:
-  ShaftTraversal(const std::vector<Triangle>& triangles, const std::vector<int>& patch_of,
-                 std::span<const Facet> facets, std::span<const Point> shaft_points,
-                 std::span<const std::pair<Point, Point>> probes, bool exact_contacts, int patch_a, int patch_b,
-                 std::vector<int>* hits)
+  ShaftTest(const std::vector<Triangle>& triangles, const std::vector<int>& patch_of, std::span<const Facet> facets,
+            std::span<const Point> shaft_points, std::span<const std::pair<Point, Point>> probes, bool exact_contacts,
+            int patch_a, int patch_b, std::vector<int>* hits)
       : triangles_(triangles), patch_of_(patch_of), facets_(facets), pts_(shaft_points), probes_(probes),
         exact_contacts_(exact_contacts), pa_(patch_a), pb_(patch_b), hits_(hits) {}
-  bool go_further() const { return true; }
-  void intersection(const CGAL::Bbox_3&, const Primitive& primitive) {
-    const int patch = patch_of_[primitive.id() - triangles_.begin()];
+
+  void operator()(std::size_t index) {
+    const int patch = patch_of_[index];
     if (patch == pa_ || patch == pb_) return;
     if (!hits_->empty() && hits_->back() == patch) return;  // the patch's other triangle: already a hit
-    const Triangle& t = *primitive.id();
+    const Triangle& t = triangles_[index];
     for (const Facet& f : facets_)
       if (f.side(t[0]) != CGAL::POSITIVE && f.side(t[1]) != CGAL::POSITIVE && f.side(t[2]) != CGAL::POSITIVE)
         return;  // a facet plane weakly separates t from the shaft
@@ -402,10 +429,6 @@ class ShaftTraversal {
       for (int k = 0; k < 3 && inside; ++k) inside = f.side(t[k]) == CGAL::POSITIVE;
     if (!inside && exact_contacts_ && !probe_segment_hits(t) && !meets_interior_exactly(t)) return;  // touches only
     hits_->push_back(patch);
-  }
-  template <class Node>
-  bool do_intersect(const CGAL::Bbox_3& box, const Node& node) const {
-    return CGAL::do_overlap(box, node.bbox());
   }
 
  private:
@@ -428,7 +451,6 @@ class ShaftTraversal {
     return detail::triangle_meets_interior({to_vec(t[0]), to_vec(t[1]), to_vec(t[2])}, planes);
   }
 
- private:
   const std::vector<Triangle>& triangles_;
   const std::vector<int>& patch_of_;
   std::span<const Facet> facets_;
@@ -437,6 +459,24 @@ class ShaftTraversal {
   bool exact_contacts_;
   int pa_, pb_;
   std::vector<int>* hits_;
+};
+
+// Traversal that hands every triangle whose box overlaps the shaft's box to a ShaftTest.
+class ShaftTraversal {
+ public:
+  ShaftTraversal(const std::vector<Triangle>& triangles, ShaftTest& test) : triangles_(triangles), test_(test) {}
+  bool go_further() const { return true; }
+  void intersection(const CGAL::Bbox_3&, const Primitive& primitive) {
+    test_(static_cast<std::size_t>(primitive.id() - triangles_.begin()));
+  }
+  template <class Node>
+  bool do_intersect(const CGAL::Bbox_3& box, const Node& node) const {
+    return CGAL::do_overlap(box, node.bbox());
+  }
+
+ private:
+  const std::vector<Triangle>& triangles_;
+  ShaftTest& test_;
 };
 
 bool CgalVisibility::patch_hides(int patch, std::span<const Point> a, std::span<const Point> b) const {
@@ -466,7 +506,9 @@ bool CgalVisibility::patch_hides(int patch, std::span<const Point> a, std::span<
 }
 
 PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a, std::span<const Point> b,
-                                           int patch_b) const {
+                                           int patch_b, const std::vector<int>* candidates,
+                                           std::vector<int>* occluders) const {
+  if (occluders != nullptr) occluders->clear();
   // Facing: some point of each must lie strictly in front of the other's plane.
   if (a.size() >= 3 && !any_strictly_in_front(a, b)) return PairClass::kFacingAway;
   if (!any_strictly_in_front(b, a)) return PairClass::kFacingAway;
@@ -504,12 +546,24 @@ PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a
       if (strictly_inside(u) && strictly_inside(v)) probes.emplace_back(u, v);
     }
   std::vector<int> hits;
-  ShaftTraversal traversal(triangles_, triangle_patch_, facets, pts, probes, options_.exact_shaft_contacts, patch_a,
-                           patch_b, &hits);
-  if (!triangles_.empty()) tree_.traversal(bbox_of(pts), traversal);
+  ShaftTest test(triangles_, triangle_patch_, facets, pts, probes, options_.exact_shaft_contacts, patch_a, patch_b,
+                 &hits);
+  const CGAL::Bbox_3 shaft_box = bbox_of(pts);
+  if (candidates == nullptr) {
+    ShaftTraversal traversal(triangles_, test);
+    if (!triangles_.empty()) tree_.traversal(shaft_box, traversal);
+  } else {
+    for (const int patch : *candidates) {
+      if (patch == patch_a || patch == patch_b) continue;
+      const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
+      for (int i = begin; i < end; ++i)
+        if (CGAL::do_overlap(shaft_box, triangle_boxes_[static_cast<std::size_t>(i)])) test(static_cast<std::size_t>(i));
+    }
+  }
   if (hits.empty()) return PairClass::kFullyVisible;
   std::sort(hits.begin(), hits.end());
   hits.erase(std::unique(hits.begin(), hits.end()), hits.end());
+  if (occluders != nullptr) *occluders = hits;
   for (int patch : hits)
     if (patch_hides(patch, a, b)) return PairClass::kFullyHidden;
   return PairClass::kPartial;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "hrad/core/scene.h"
 #include "hrad/core/types.h"
@@ -51,6 +52,21 @@ class Visibility {
 
   /// Classifies a pair by shaft culling (Haines & Wallace 1994) with exact predicates.
   virtual PairClass classify(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b) const = 0;
+
+  /// classify() with candidate occluder lists (Haines & Wallace 1994, sec. 5; Teller & Hanrahan
+  /// 1993 pass such lists down a hierarchy). Only the patches in `candidates` (sorted; every patch
+  /// when null) can occlude, and `occluders` (when not null) receives, sorted, the patches whose
+  /// triangles may meet the pair's shaft. The shaft of a sub-pair (a point or sub-polygon of `a`
+  /// with a sub-polygon of `b`) lies in the pair's shaft, so the pair's occluders are complete
+  /// candidates for every sub-pair: the answer is the one a search of the whole scene gives, at a
+  /// cost that falls with the list instead of the scene. `a` may be a single point.
+  virtual PairClass classify_among(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b,
+                                   const std::vector<int>* candidates, std::vector<int>* occluders) const = 0;
+
+  /// segment_blocked() where only the patches `occluders` can block (e.g. a pair's occluders from
+  /// classify_among(), for a segment between points of the pair). Counted as a segment query.
+  virtual bool segment_blocked_among(const Vec3& a, int patch_a, const Vec3& b, int patch_b,
+                                     std::span<const int> occluders) const = 0;
 
   /// Classifies the pair and, only when partial, samples `samples` stratified point pairs
   /// (deterministic in `seed`) to estimate the visible fraction. Only mutually facing sample
