@@ -28,10 +28,12 @@ void receiver_gauss_points(std::span<const Vec3> p, const Vec3& n, std::vector<d
   }
 }
 
-double receiver_gauss_factor(std::span<const Vec3> receiver, std::span<const Vec3> source, double rel_tol) {
+double receiver_gauss_factor(std::span<const Vec3> receiver, std::span<const Vec3> source, double rel_tol,
+                             int* point_count) {
   thread_local std::vector<detail::WeightedPoint> points;
   const Vec3 n = newell_normal(receiver).normalized();
   receiver_gauss_points(receiver, n, points);
+  if (point_count != nullptr) *point_count = static_cast<int>(points.size());
   double sum = 0.0, area = 0.0;
   for (const detail::WeightedPoint& p : points) {
     sum += p.weight * point_to_polygon(p.x, n, source, rel_tol);
@@ -54,11 +56,14 @@ std::pair<Vec3, double> vertex_sphere(std::span<const Vec3> p) {
 
 }  // namespace
 
-double receiver_factor_by_distance(std::span<const Vec3> receiver, std::span<const Vec3> source, double centroid_ratio) {
+double receiver_factor_by_distance(std::span<const Vec3> receiver, std::span<const Vec3> source, double centroid_ratio,
+                                   int* point_count) {
   const auto [rc, rr] = vertex_sphere(receiver);
   const auto [sc, sr] = vertex_sphere(source);
   const double gap = (rc - sc).norm() - rr - sr;
-  if (!(gap > 0.0) || 2.0 * rr > centroid_ratio * gap) return receiver_gauss_factor(receiver, source);
+  if (!(gap > 0.0) || 2.0 * rr > centroid_ratio * gap)
+    return receiver_gauss_factor(receiver, source, kLambertSumOnly, point_count);
+  if (point_count != nullptr) *point_count = 1;
   // A quad's bilinear centre and a triangle's centroid are the vertices' mean; other polygons
   // take the area centroid.
   const Vec3 x = receiver.size() <= 4 ? rc : polygon_centroid(receiver);

@@ -24,8 +24,9 @@ void receiver_gauss_points(std::span<const Vec3> receiver, const Vec3& unit_norm
 /// and the plain sum keeps closure to rounding. Unoccluded; the receiver's normal from its vertex
 /// order. The error is the rule's: ~1e-4 relative for unit squares 1 apart (Howell C-11), larger
 /// for a source close to the receiver against the receiver's size.
+/// `point_count`, when not null, receives the number of point factors evaluated.
 double receiver_gauss_factor(std::span<const Vec3> receiver, std::span<const Vec3> source,
-                             double rel_tol = kLambertSumOnly);
+                             double rel_tol = kLambertSumOnly, int* point_count = nullptr);
 
 /// The same factor by one point, the receiver's centroid, where the receiver is small against its
 /// distance to the source: diameter(receiver) <= `centroid_ratio` x the gap between the two
@@ -34,6 +35,6 @@ double receiver_gauss_factor(std::span<const Vec3> receiver, std::span<const Vec
 /// derivative over the receiver), so ratio 0.1 keeps it near 0.25%: enough where the factors are
 /// only a distribution of an exactly known total (hierarchical_leaf_factors.h), at 1/9 the cost.
 double receiver_factor_by_distance(std::span<const Vec3> receiver, std::span<const Vec3> source,
-                                   double centroid_ratio);
+                                   double centroid_ratio, int* point_count = nullptr);
 
 }  // namespace hrad
