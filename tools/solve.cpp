@@ -13,7 +13,9 @@
 //   --feps F               hierarchical: form-factor refinement tolerance (default automatic)
 //   --bfeps B              hierarchical: B*F refinement tolerance (radiosity units; default unused)
 //   --aeps A               hierarchical: smallest element area (default automatic)
-//   --tolerance T          iterations stop when the largest radiosity change / largest radiosity < T
+//   --tolerance T          iterations stop when the estimated error of the answer, relative to the
+//                          largest reflected radiosity, is below T: the last change times q / (1 - q),
+//                          q the contraction per iteration estimated from successive changes
 //                          (default 1e-6)
 //   --max-iterations N     iteration limit (default 10000); reaching it is a status, not an error
 //   --linear-solver S      full: lu (default, direct), jacobi or gauss_seidel
@@ -23,11 +25,15 @@
 //                          unoccluded form factors: contour (default: Gauss points on the receiver,
 //                          Lambert's exact point-to-polygon formula) or analytic (closed-form
 //                          polygon-to-polygon, ~1e-13, much slower)
-//   --visibility-samples K point pairs per partially visible pair (default 16)
+//   --visibility-samples K point pairs per partially visible pair (default 64)
 //   --clustering auto|on|off
 //                          hierarchical: a cluster hierarchy above the input polygons, linked from
 //                          one root self-link (Smits, Arvo & Greenberg 1994), or plain HSA with every
 //                          pair of input polygons linked first; auto (default) clusters from 200 patches
+//   --push hsa|leaf        hierarchical: hsa (default) gathers each link at the nodes it joins and
+//                          pushes down (O(links) per iteration); leaf resolves element links to the
+//                          leaves on both sides with their own factors (exact per element in closed
+//                          rooms, one term per leaf and link on its path)
 //   --threads N            worker threads (default: all cores)
 //   --report R.json        the solve report (see lib/hrad/report/report_json.h)
 //   --out S.ply            the leaf mesh with tone-mapped vertex colours and per-face radiosity
@@ -56,7 +62,7 @@ void add_solve_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("solve", "Solve the radiosity of a scene (full, substructure or hierarchical)");
   struct Args {
     std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", kernel = "contour", clustering = "auto",
-                report, out;
+                push = "hsa", report, out;
     double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
     int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0;
     bool quiet = false;
@@ -69,13 +75,15 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--feps", args->feps, "Hierarchical: form-factor tolerance (default automatic)");
   cmd->add_option("--bfeps", args->bfeps, "Hierarchical: B*F tolerance (default unused)");
   cmd->add_option("--aeps", args->aeps, "Hierarchical: smallest element area (default automatic)");
-  cmd->add_option("--tolerance", args->tolerance, "Largest relative radiosity change to stop iterating (default 1e-6)");
+  cmd->add_option("--tolerance", args->tolerance,
+                  "Stop when the estimated relative error (last change x q/(1-q), q the contraction) is below this (default 1e-6)");
   cmd->add_option("--max-iterations", args->max_iterations, "Iteration limit (default 10000)");
   cmd->add_option("--linear-solver", args->linear_solver, "Full: lu | jacobi | gauss_seidel (default lu)");
   cmd->add_option("--effects", args->effects, "auto | all (default auto)");
   cmd->add_option("--kernel", args->kernel, "Form-factor kernel: contour (default) | analytic");
   cmd->add_option("--visibility-samples", args->visibility_samples, "Point pairs per partially visible pair (default 64)");
   cmd->add_option("--clustering", args->clustering, "Hierarchical: auto | on | off (default auto: on from 200 patches)");
+  cmd->add_option("--push", args->push, "Hierarchical: hsa (default, O(links) gather) | leaf (links resolved to leaves)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--report", args->report, "Write the solve report (JSON) here");
   cmd->add_option("--out", args->out, "Write the leaf mesh (PLY) here");
@@ -88,6 +96,7 @@ void add_solve_command(CLI::App& app) {
     o.effects = parse_effects_mode(args->effects);
     o.kernel = parse_kernel(args->kernel);
     o.clustering = parse_clustering(args->clustering);
+    o.push = parse_push(args->push);
     // Given on the command line, an area or tolerance must be a positive number (0 is "automatic"
     // only when the option is left out).
     for (const auto& [name, value] : {std::pair<const char*, double>{"--max-area", args->max_area},

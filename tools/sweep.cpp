@@ -59,9 +59,9 @@ void add_sweep_command(CLI::App& app) {
   struct Args {
     std::string scene, out;
     bool quick = false;
-    double reference_elements = 0.0, target_error = 0.01;
+    double reference_elements = 0.0, target_error = 0.01, feps_aeps = 0.0;
     int samples = 256, threads = 0;
-    std::string elements, patches, feps, aeps, reference_from;
+    std::string elements, patches, feps, aeps, reference_from, push = "hsa";
     int visibility_samples = 0;
   };
   auto args = std::make_shared<Args>();
@@ -79,6 +79,9 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--patches", args->patches, "Shooting-patch counts of the substructuring patch-size runs");
   cmd->add_option("--feps", args->feps, "Hierarchical form-factor tolerances");
   cmd->add_option("--aeps", args->aeps, "Hierarchical smallest-element areas as fractions of the total area");
+  cmd->add_option("--feps-aeps", args->feps_aeps,
+                  "The smallest-element area of the feps runs, as a fraction of the total area (default automatic)");
+  cmd->add_option("--push", args->push, "Hierarchical link operators to run, comma-separated: hsa, leaf (default hsa)");
   cmd->add_option("--visibility-samples", args->visibility_samples,
                   "Point pairs per partly visible pair in every run (default: the solvers'); the reference uses 4x");
   cmd->callback([args, cmd] {
@@ -133,6 +136,16 @@ void add_sweep_command(CLI::App& app) {
     if (!feps.empty()) options.feps_values = feps;
     if (!aeps.empty()) options.aeps_fractions = aeps;
     options.visibility_samples = args->visibility_samples;
+    if (!(args->feps_aeps >= 0.0 && args->feps_aeps < 1.0))
+      throw Error(fmt::format("--feps-aeps must be in [0, 1), got {}", args->feps_aeps));
+    options.feps_aeps_fraction = args->feps_aeps;
+    options.pushes.clear();
+    {
+      std::stringstream list(args->push);
+      std::string item;
+      while (std::getline(list, item, ',')) options.pushes.push_back(parse_push(item));
+      if (options.pushes.empty()) throw Error("--push: expected hsa, leaf or hsa,leaf, got ''");
+    }
     options.progress = show_progress;
 
     Reference reference;

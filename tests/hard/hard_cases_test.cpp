@@ -207,16 +207,26 @@ TEST(HardCases, Reflectance0999ClosedRoom) {
     EXPECT_EQ(s.termination, Termination::kMaxIterations) << to_string(method) << ": " << s.message;
     EXPECT_EQ(s.iterations, 50);
   }
-  SolveOptions hr;
-  hr.method = Method::kHierarchical;
-  hr.max_iterations = 40000;
-  hr.tolerance = 1e-7;
-  Solution sol;
-  const SolveSummary s = solve(box, hr, &sol);
-  for (const Rgb& b : sol.face_radiosity) EXPECT_TRUE(b.allFinite());
-  EXPECT_FALSE(s.message.empty());
-  EXPECT_EQ(s.termination, Termination::kConverged) << s.message;
-  EXPECT_LT(max_relative_deviation(sol, e / (1 - rho)), 1e-3);
+  // Per element with links resolved to the leaves (each leaf's factors sum to 1): within 1e-3. The
+  // HSA push's leaves sum to 1 only up to the interpolation of their links' fields, and what they
+  // send and receive is correlated with that (a leaf that gathers a little too much also shines a
+  // little brighter), which 1 / (1 - rho) = 1000 amplifies: the area mean within 1e-2.
+  for (const Push push : {Push::kLeaf, Push::kHsa}) {
+    SolveOptions hr;
+    hr.method = Method::kHierarchical;
+    hr.max_iterations = 40000;
+    hr.tolerance = 1e-7;
+    hr.push = push;
+    Solution sol;
+    const SolveSummary s = solve(box, hr, &sol);
+    for (const Rgb& b : sol.face_radiosity) EXPECT_TRUE(b.allFinite());
+    EXPECT_FALSE(s.message.empty());
+    EXPECT_EQ(s.termination, Termination::kConverged) << s.message;
+    if (push == Push::kLeaf) EXPECT_LT(max_relative_deviation(sol, e / (1 - rho)), 1e-3);
+    double mean = 0.0;
+    for (std::size_t i = 0; i < box.patches.size(); ++i) mean += box.patches[i].area * sol.patch_radiosity[i][0] / box.total_area();
+    EXPECT_NEAR(mean * (1 - rho) / e, 1.0, push == Push::kLeaf ? 1e-3 : 1e-2) << to_string(push);
+  }
   const Solution lu = solve_finite(box, full(0.1));
   EXPECT_LT(max_relative_deviation(lu, e / (1 - rho)), 1e-8);
 }
@@ -247,7 +257,9 @@ TEST(HardCases, EmitterTouchingReceivers) {
 
 // A tiny emitter in a huge room: a 1 cm light 1 m below the ceiling of a 1 km box. Outcome: the walls
 // absorb the emitted power within 1e-5 (full, LU, analytic kernel; the light hides bits of the
-// ceiling, so sampled visibility enters) and within 1e-4 with the hierarchical solver.
+// ceiling, so sampled visibility enters), within 1e-4 with the hierarchical solver's leaf push and
+// 1e-2 with its HSA push (the radiosity varies by orders of magnitude over the walls, and the
+// leaves' closure errors, within feps, are correlated with it).
 TEST(HardCases, TinyEmitterInHugeRoom) {
   const double L = 1000.0, t = 0.01;
   Scene s = make_box(L, L, L, {material(Rgb::Constant(0.5), Rgb::Zero()), material(Rgb::Zero(), Rgb::Constant(1e6))},
@@ -270,17 +282,20 @@ TEST(HardCases, TinyEmitterInHugeRoom) {
   EXPECT_NEAR(absorbed / emitted, 1.0, 1e-5);
   // The hierarchical solver once stopped after the direct light here (its convergence test divided
   // by the light's radiosity, 1e6 against 1e-5 on the walls) and returned half the absorbed power.
-  SolveOptions hr;
-  hr.method = Method::kHierarchical;
-  const Solution h = solve_finite(s, hr);
-  double absorbed_hr = 0.0;
-  for (std::size_t f = 0; f < h.faces.size(); ++f) {
-    if (s.material_of(s.patches[h.face_patch[f]]).is_emitter()) continue;
-    std::vector<Vec3> poly;
-    for (int v : h.faces[f]) poly.push_back(h.vertices[v]);
-    absorbed_hr += polygon_area(poly) * (1 - 0.5) / 0.5 * h.face_radiosity[f][0];
+  for (const Push push : {Push::kLeaf, Push::kHsa}) {
+    SolveOptions hr;
+    hr.method = Method::kHierarchical;
+    hr.push = push;
+    const Solution h = solve_finite(s, hr);
+    double absorbed_hr = 0.0;
+    for (std::size_t f = 0; f < h.faces.size(); ++f) {
+      if (s.material_of(s.patches[h.face_patch[f]]).is_emitter()) continue;
+      std::vector<Vec3> poly;
+      for (int v : h.faces[f]) poly.push_back(h.vertices[v]);
+      absorbed_hr += polygon_area(poly) * (1 - 0.5) / 0.5 * h.face_radiosity[f][0];
+    }
+    EXPECT_NEAR(absorbed_hr / emitted, 1.0, push == Push::kLeaf ? 1e-4 : 1e-2) << to_string(push);
   }
-  EXPECT_NEAR(absorbed_hr / emitted, 1.0, 1e-4);  // measured 1e-6 with leaf-resolved links
 }
 
 // Non-planar and non-convex input faces: a closed box read from OBJ whose top is an L-shaped

@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include "hrad/formfactor/simpson_rule.h"
 #include "hrad/geometry/polygon.h"
 
 namespace hrad {
@@ -200,6 +201,30 @@ TEST(LeafMesh, CreasesKeepSeparateVerticesAndStayConforming) {
   for (std::size_t f = 0; f < sol.faces.size(); ++f)
     for (int v : sol.faces[f])
       EXPECT_DOUBLE_EQ(sol.vertex_radiosity[static_cast<std::size_t>(v)][0], sol.face_patch[f] == 0 ? 1.0 : 3.0);
+}
+
+TEST(ElementHierarchy, ChildCornersAreTheParentsSimpsonPoints) {
+  // The oracle reuses a parent's corner, edge-midpoint and centre points as its children's corners
+  // (formfactor/simpson_rule.h child_corner_points()): bit-identical under split().
+  Scene s;
+  s.materials = {{"m", Rgb::Constant(0.5), Rgb::Zero()}};
+  for (const std::vector<Vec3>& poly : {std::vector<Vec3>{{0, 0, 0}, {3, 0, 0}, {2, 1, 0}, {0.5, 1, 0}},
+                                        std::vector<Vec3>{{0, 0, 0}, {2, 0.5, 0}, {0.3, 1.2, 0}}}) {
+    Patch p;
+    p.vertices = poly;
+    p.normal = newell_normal(poly).normalized();
+    p.area = polygon_area(poly);
+    p.material = 0;
+    s.patches = {p};
+    ElementHierarchy h(s);
+    const NodeId first = h.split(h.root(0));
+    const SimpsonPoints parent = simpson_points(h.node(h.root(0)).polygon());
+    for (int k = 0; k < 4; ++k) {
+      const std::array<int, 4> corners = child_corner_points(static_cast<int>(poly.size()), k);
+      const ElementNode& child = h.node(first + k);
+      for (int c = 0; c < child.vertex_count; ++c) EXPECT_EQ(child.vertices[c], parent.x[corners[c]]) << k << " " << c;
+    }
+  }
 }
 
 }  // namespace

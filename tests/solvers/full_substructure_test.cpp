@@ -90,6 +90,32 @@ TEST(ClosedRoom, SubstructuringWithSmallerPatches) {
   EXPECT_LT(max_relative_error(sol, Rgb::Constant(1.0 / 0.05)), 1e-8);
 }
 
+// The stopping test bounds the error of the returned answer, not the last change: with the
+// contraction q per iteration the remaining error is about change q / (1 - q), ten times the change
+// at rho = 0.9. At the default tolerance (1e-6, relative to the largest reflected radiosity B - E)
+// every element of a uniform closed cube is within 1e-6 of E / (1 - rho) in that measure, for each
+// iterative solver; stopping on the change alone left 3.8e-6.
+TEST(StoppingTest, ToleranceBoundsTheErrorOfTheAnswer) {
+  const double rho = 0.9, e = 1.0;
+  const Scene s = make_box(1.0, 1.0, 1.0, {material(Rgb::Constant(rho), Rgb::Constant(e))}, {0, 0, 0, 0, 0, 0});
+  const double exact = e / (1.0 - rho), reflected = exact - e;
+  for (const auto& [method, linear] : {std::pair{Method::kSubstructure, LinearSolver::kLu},
+                                       std::pair{Method::kFull, LinearSolver::kJacobi},
+                                       std::pair{Method::kFull, LinearSolver::kGaussSeidel}}) {
+    SolveOptions o = options(method);
+    o.tolerance = 1e-6;
+    o.linear_solver = linear;
+    Solution sol;
+    const SolveSummary sum = solve(s, o, &sol);
+    ASSERT_EQ(sum.termination, Termination::kConverged) << sum.message;
+    double worst = 0.0;
+    for (const Rgb& b : sol.face_radiosity) worst = std::max(worst, std::abs(b[0] - exact) / reflected);
+    EXPECT_LT(worst, 1e-6) << to_string(method) << " " << to_string(linear);
+    // The last change alone would not have bounded it.
+    EXPECT_LT(sum.change_per_iteration.back(), worst) << to_string(method) << " " << to_string(linear);
+  }
+}
+
 // Inside a closed convex surface the factors from any element sum to 1; with reciprocity (exact
 // for the analytic kernel) the area mean is Ebar / (1 - rho) whatever the emission's distribution.
 TEST(FacetedSphere, AreaMeanIsMeanEmissionOverOneMinusRho) {

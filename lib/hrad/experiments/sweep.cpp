@@ -76,15 +76,20 @@ std::vector<std::pair<Method, SweepSetting>> sweep_settings(const Scene& scene, 
     o.patch_area = area / p;
     add(Method::kSubstructure, "patch_area", o.patch_area, o);
   }
-  for (double feps : options.feps_values) {
-    SolveOptions o = base_options(Method::kHierarchical, options);
-    o.feps = feps;
-    add(Method::kHierarchical, "feps", feps, o);
-  }
-  for (double fraction : options.aeps_fractions) {
-    SolveOptions o = base_options(Method::kHierarchical, options);
-    o.aeps = area * fraction;
-    add(Method::kHierarchical, "aeps", o.aeps, o);
+  for (const Push push : options.pushes) {
+    for (double feps : options.feps_values) {
+      SolveOptions o = base_options(Method::kHierarchical, options);
+      o.feps = feps;
+      o.aeps = area * options.feps_aeps_fraction;
+      o.push = push;
+      add(Method::kHierarchical, "feps", feps, o);
+    }
+    for (double fraction : options.aeps_fractions) {
+      SolveOptions o = base_options(Method::kHierarchical, options);
+      o.aeps = area * fraction;
+      o.push = push;
+      add(Method::kHierarchical, "aeps", o.aeps, o);
+    }
   }
   return settings;
 }
@@ -213,6 +218,7 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
     const ErrorMetrics smooth = judge(scene, reflected, reference, lookup, options.samples_per_patch, Field::interpolated);
     SweepRow row;
     row.method = std::string(to_string(method));
+    if (method == Method::kHierarchical && setting.options.push == Push::kLeaf) row.method += "_leaf";
     row.parameter = setting.parameter;
     row.value = setting.value;
     row.elements = s.elements;

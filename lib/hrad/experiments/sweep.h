@@ -75,6 +75,11 @@ struct SweepOptions {
   /// (feps at its default).
   std::vector<double> feps_values = {0.3, 0.1, 0.03, 0.01, 0.003, 0.001};
   std::vector<double> aeps_fractions = {1e-2, 1e-3, 1e-4, 5e-5, 3e-5, 2.5e-5, 2e-5, 1.5e-5};
+  /// The smallest-area fraction of the feps runs (0 = the solver's automatic aeps).
+  double feps_aeps_fraction = 0.0;
+  /// The hierarchical runs' link operators: each feps and aeps setting runs once per push; rows of
+  /// Push::kLeaf are labelled method "hierarchical_leaf".
+  std::vector<Push> pushes = {Push::kHsa};
   int samples_per_patch = 256;
   /// Visibility point pairs per partly visible pair in every run (0 = the solvers' default); the
   /// reference uses four times as many.

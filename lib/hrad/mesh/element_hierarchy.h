@@ -93,7 +93,13 @@ class ElementHierarchy {
   ///  * patch_radiosity is the area-weighted mean of each patch's leaves.
   /// `weld_tolerance` (scene units; 0 = 1e-9 times the scene's bounding-box diagonal) decides when
   /// two vertices are the same point and when a vertex lies on an edge.
-  Solution to_solution(double weld_tolerance = 0.0) const;
+  ///
+  /// `point_radiosity`, when not empty, holds per node (by id) a leaf's radiosity at the corner,
+  /// edge-midpoint and centre points of formfactor/simpson_rule.h (a solver that knows B to second
+  /// order over each leaf); a leaf then contributes its value at the vertex to the vertex's mean (at
+  /// a T-vertex, the quadratic along the edge through its ends and midpoint) instead of its
+  /// constant.
+  Solution to_solution(double weld_tolerance = 0.0, std::span<const std::array<Rgb, 9>> point_radiosity = {}) const;
 
  private:
   std::vector<ElementNode> nodes_;

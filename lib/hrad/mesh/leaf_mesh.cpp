@@ -137,7 +137,7 @@ std::vector<int> plane_groups(const std::vector<ElementNode>& roots, double tol)
 
 }  // namespace
 
-Solution ElementHierarchy::to_solution(double weld_tolerance) const {
+Solution ElementHierarchy::to_solution(double weld_tolerance, std::span<const std::array<Rgb, 9>> point_radiosity) const {
   Solution out;
   const std::vector<NodeId> leaf_ids = all_leaves();
   if (leaf_ids.empty()) return out;
@@ -169,14 +169,21 @@ Solution ElementHierarchy::to_solution(double weld_tolerance) const {
     for (const Vec3& v : node(leaf_ids[f]).polygon()) corners[f].push_back(grid.weld(v));
 
   // 2. Insert T-vertices: every position lying inside a leaf edge becomes a vertex of that leaf.
+  //    Each vertex of a leaf's polygon remembers its edge k and where along it (t from corner k).
   std::vector<std::vector<int>> polygons(leaf_ids.size());
+  std::vector<std::vector<std::pair<int, double>>> along(leaf_ids.size());
   for (std::size_t f = 0; f < leaf_ids.size(); ++f) {
     const std::vector<int>& c = corners[f];
     for (std::size_t k = 0; k < c.size(); ++k) {
       const int a = c[k], b = c[(k + 1) % c.size()];
       if (a == b) continue;  // collapsed corner (element smaller than the weld tolerance)
       polygons[f].push_back(a);
-      for (int t : grid.on_segment(a, b)) polygons[f].push_back(t);
+      along[f].emplace_back(static_cast<int>(k), 0.0);
+      const Vec3 pa = grid.point(a), ab = grid.point(b) - pa;
+      for (int t : grid.on_segment(a, b)) {
+        polygons[f].push_back(t);
+        along[f].emplace_back(static_cast<int>(k), (grid.point(t) - pa).dot(ab) / ab.squaredNorm());
+      }
     }
   }
 
@@ -211,6 +218,7 @@ Solution ElementHierarchy::to_solution(double weld_tolerance) const {
   omerr().disable();  // complex-edge messages are handled below
   out.faces.resize(leaf_ids.size());
   std::vector<std::size_t> face_leaf;  // OpenMesh face index -> leaf index (degenerate leaves are left out)
+  std::vector<std::vector<LeafMesh::VertexHandle>> face_vertices(leaf_ids.size());
   for (std::size_t f = 0; f < leaf_ids.size(); ++f) {
     std::vector<LeafMesh::VertexHandle> vhs;
     for (int key : face_keys[f]) vhs.push_back(handle_of_key[static_cast<std::size_t>(key)]);
@@ -222,18 +230,31 @@ Solution ElementHierarchy::to_solution(double weld_tolerance) const {
     }
     if (fh.is_valid()) face_leaf.push_back(f);
     for (const LeafMesh::VertexHandle& vh : vhs) out.faces[f].push_back(vh.idx());
+    face_vertices[f] = vhs;
   }
   if (om_errors) omerr().enable();
 
   // 5. Vertex radiosity: area-weighted mean of the faces around each (group, position), counting
   //    the larger face a T-vertex was inserted into (anchoring; Baum et al. 1991).
+  //    With point_radiosity, each leaf contributes its own value at the vertex.
   std::vector<Rgb> sum(key_position.size(), Rgb::Zero());
   std::vector<double> weight(key_position.size(), 0.0);
   for (const LeafMesh::FaceHandle fh : mesh.faces()) {
-    const ElementNode& e = node(leaf_ids[face_leaf[static_cast<std::size_t>(fh.idx())]]);
-    for (const LeafMesh::VertexHandle vh : mesh.fv_range(fh)) {
-      const int key = key_of_vertex[static_cast<std::size_t>(vh.idx())];
-      sum[static_cast<std::size_t>(key)] += e.area * e.radiosity;
+    const std::size_t f = face_leaf[static_cast<std::size_t>(fh.idx())];
+    const NodeId id = leaf_ids[f];
+    const ElementNode& e = node(id);
+    for (std::size_t j = 0; j < face_vertices[f].size(); ++j) {
+      const int key = key_of_vertex[static_cast<std::size_t>(face_vertices[f][j].idx())];
+      Rgb value = e.radiosity;
+      if (!point_radiosity.empty()) {
+        // The leaf's quadratic along edge k through corner k, the edge's midpoint and corner k + 1.
+        const std::array<Rgb, 9>& v = point_radiosity[static_cast<std::size_t>(id)];
+        const auto [k, t] = along[f][j];
+        const int n = e.vertex_count;
+        value = 2.0 * (t - 0.5) * (t - 1.0) * v[static_cast<std::size_t>(k)] - 4.0 * t * (t - 1.0) * v[static_cast<std::size_t>(n + k)] +
+                2.0 * t * (t - 0.5) * v[static_cast<std::size_t>((k + 1) % n)];
+      }
+      sum[static_cast<std::size_t>(key)] += e.area * value;
       weight[static_cast<std::size_t>(key)] += e.area;
     }
   }

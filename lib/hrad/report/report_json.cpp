@@ -16,19 +16,23 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
   json j;
   j["scene"] = scene.path;
   j["method"] = std::string(to_string(summary.method));
-  j["options"] = {{"max_area", options.max_area},
-                  {"patch_area", options.patch_area},
-                  {"feps", options.feps},
-                  {"bfeps", options.bfeps},
-                  {"aeps", options.aeps},
-                  {"tolerance", options.tolerance},
-                  {"max_iterations", options.max_iterations},
-                  {"linear_solver", std::string(to_string(options.linear_solver))},
-                  {"effects", std::string(to_string(options.effects))},
-                  {"kernel", std::string(to_string(options.kernel))},
-                  {"visibility_samples", options.visibility_samples},
-                  {"clustering", std::string(to_string(options.clustering))},
-                  {"threads", options.threads}};
+  // The options as the solve used them (automatic values filled in, the method's own kernel).
+  const SolveOptions& used = summary.used;
+  (void)options;
+  j["options"] = {{"max_area", used.max_area},
+                  {"patch_area", used.patch_area},
+                  {"feps", used.feps},
+                  {"bfeps", used.bfeps},
+                  {"aeps", used.aeps},
+                  {"tolerance", used.tolerance},
+                  {"max_iterations", used.max_iterations},
+                  {"linear_solver", std::string(to_string(used.linear_solver))},
+                  {"effects", std::string(to_string(used.effects))},
+                  {"kernel", std::string(to_string(used.kernel))},
+                  {"visibility_samples", used.visibility_samples},
+                  {"clustering", std::string(to_string(used.clustering))},
+                  {"push", std::string(to_string(used.push))},
+                  {"threads", used.threads}};
   j["termination"] = std::string(to_string(summary.termination));
   j["status"] = std::string(to_string(summary.termination));
   j["message"] = summary.message;
@@ -38,6 +42,13 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
   j["patch_count"] = summary.patches;
   j["form_factor_evaluations"] = summary.form_factor_evaluations;
   j["visibility_queries"] = summary.visibility_queries;
+  j["work"] = {{"gather_terms", summary.work.gather_terms},
+               {"point_factor_evaluations", summary.work.point_factor_evaluations},
+               {"form_factor_evaluations", summary.work.form_factor_evaluations},
+               {"segment_queries", summary.work.segment_queries},
+               {"shaft_queries", summary.work.shaft_queries},
+               {"link_bytes", summary.work.link_bytes},
+               {"candidate_pairs", summary.work.candidate_pairs}};
   json seconds = json::object();
   seconds["total"] = summary.total_seconds;
   for (const auto& [name, s] : summary.seconds) seconds[name] = s;

@@ -13,9 +13,12 @@ namespace hrad {
 
 /// The report of one solve:
 ///   scene, method, options {max_area, patch_area, feps, bfeps, aeps, tolerance, max_iterations,
-///     linear_solver, effects, kernel, visibility_samples, clustering, threads},
+///     linear_solver, effects, kernel, visibility_samples, clustering, push, threads}: as the solve
+///     used them (SolveSummary::used: automatic values filled in, the method's kernel),
 ///   termination ("converged" | "max_iterations" | "direct" | "failed"), status (the same), message,
 ///   iterations, elements, links, patch_count (Scene::patches), form_factor_evaluations, visibility_queries,
+///   work {gather_terms, point_factor_evaluations, form_factor_evaluations, segment_queries,
+///     shaft_queries, link_bytes, candidate_pairs} (work.h: what the solve did, counted where done),
 ///   seconds {total, <phase>: s, ...}, effects {visibility, color_channels, bounces, cull_facing_away, reasons},
 ///   change_per_iteration [..], peak_memory_bytes, figures {name: value},
 ///   energy {emitted_power, radiosity_power}: sums of area * E and area * B over the elements (channel means),

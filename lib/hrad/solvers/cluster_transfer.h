@@ -1,18 +1,17 @@
-// Transfer between nodes of the clustered hierarchy when at least one is a cluster: a bound for
-// the refinement oracle and an estimate for the link (Smits, Arvo & Greenberg 1994, sec. 3-4;
-// Sillion 1995, sec. 4, "oriented" clusters).
+// Geometry of the nodes of the clustered hierarchy (elements and clusters) for the refinement
+// oracle (Smits, Arvo & Greenberg 1994, sec. 3-4; Sillion 1995, sec. 4, "oriented" clusters):
+// bounding spheres, projected areas, facing tests, a cheap far-field factor, and the surfaces below
+// a node as a SurfaceSampler for the sampled factor (FormFactorEvaluator::sampled()).
 //
-// Bound (for tests and a conservative oracle): every point of p sees q within the solid angle of q's bounding sphere, at distance
+// Bound: every point of p sees q within the solid angle of q's bounding sphere, at distance
 // >= d_min = |c_p - c_q| - r_p - r_q, so F(p -> q) <= Aproj_max(q) / (pi d_min^2) (the point-to-
 // disc factor with cos <= 1 at both ends); unbounded (must refine) when the spheres overlap.
-// Estimate: the far-field factor between the two centres with the exact projected areas of the
-// contents towards each other (oriented clusters, Sillion 1995 eq. 9: a cluster's contribution is
-// its projected area in the direction of transfer), F(p -> q) = Aproj_p(d) Aproj_q(-d) /
-// (pi r^2 A_p), times the kernel-weighted visible fraction of sampled point pairs (Wallace,
-// Elmquist & Haines 1989). It is reciprocal by construction: A_p F(p -> q) = A_q F(q -> p).
+// Far field: the factor between the two centres with the exact projected areas of the contents
+// towards each other (oriented clusters, Sillion 1995 eq. 9), F(p -> q) = Aproj_p(d) Aproj_q(-d) /
+// (pi r^2 A_p): no visibility, the 1/r^2 of the centres (an underestimate of the mean of 1/r^2 over
+// the two volumes), used only to decide whether a pair may be linked.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 
 #include "hrad/core/scene.h"
@@ -21,8 +20,6 @@
 #include "hrad/solvers/form_factor_evaluator.h"
 
 namespace hrad {
-
-class Visibility;
 
 struct NodeShape {
   Vec3 centre = Vec3::Zero();
@@ -39,40 +36,39 @@ struct TransferBound {
 
 class ClusterTransfer {
  public:
-  /// `visibility` may be null when `use_visibility` is false. Keeps references.
-  ClusterTransfer(const Scene& scene, const ElementHierarchy& hierarchy, const ClusterTree& tree,
-                  const Visibility* visibility, bool use_visibility, int visibility_samples);
+  /// `tree` may be null (no clusters). Keeps references.
+  ClusterTransfer(const Scene& scene, const ElementHierarchy& hierarchy, const ClusterTree* tree);
 
   NodeShape shape(NodeRef r) const;
   TransferBound bound(const NodeShape& p, const NodeShape& q) const;
   /// True when nothing of q lies strictly in front of element p's plane or the other way round
   /// (exactly zero transfer); only decided when one of them is an element.
   bool facing_away(NodeRef p, NodeRef q) const;
-  /// The estimate for a link p <-> q (p != q, at least one a cluster): value F(p -> q), reverse
-  /// F(q -> p), visibility the weighted visible fraction, unoccluded the factor without it.
-  /// Deterministic: the samples' seed comes from p and q.
-  FormFactorEstimate estimate(NodeRef p, const NodeShape& sp, NodeRef q, const NodeShape& sq) const;
-
   /// The far-field factors without visibility (value F(p -> q), reverse F(q -> p); facing_away
-  /// when either side shows no surface to the other). Cheap: no visibility query.
+  /// when either side shows no surface to the other).
   FormFactorEstimate far_field(NodeRef p, const NodeShape& sp, NodeRef q, const NodeShape& sq) const;
-
   /// Exact projected area of r's surfaces towards the unit direction d.
   double projected_area(NodeRef r, const Vec3& d) const;
-
-  std::uint64_t estimates() const { return estimates_.load(std::memory_order_relaxed); }
-
- private:
-  // A point uniform by area on r's surfaces; returns its patch.
+  /// A point uniform by area on r's surfaces; returns its patch.
   int sample(NodeRef r, double w, double u, double v, Vec3* point) const;
 
+ private:
   const Scene& scene_;
   const ElementHierarchy& h_;
-  const ClusterTree& tree_;
-  const Visibility* visibility_;
-  bool use_visibility_;
-  int samples_;
-  mutable std::atomic<std::uint64_t> estimates_{0};
+  const ClusterTree* tree_;
+};
+
+/// The surfaces below one node, for FormFactorEvaluator::sampled().
+class NodeSurfaces final : public SurfaceSampler {
+ public:
+  NodeSurfaces(const ClusterTransfer& geometry, NodeRef node, double area) : geometry_(geometry), node_(node), area_(area) {}
+  double area() const override { return area_; }
+  int sample(double w, double u, double v, Vec3* point) const override { return geometry_.sample(node_, w, u, v, point); }
+
+ private:
+  const ClusterTransfer& geometry_;
+  NodeRef node_;
+  double area_;
 };
 
 }  // namespace hrad

@@ -5,8 +5,11 @@
 #include <cmath>
 #include <vector>
 #include <cassert>
+#include <numbers>
 
 #include "hrad/formfactor/polygon_to_polygon.h"
+#include "hrad/formfactor/point_to_polygon.h"
+#include "hrad/formfactor/point_to_polygon_limit.h"
 #include "hrad/formfactor/receiver_gauss_factor.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/visibility/sampling.h"
@@ -24,29 +27,22 @@ bool behind(std::span<const Vec3> a, std::span<const Vec3> b) {
   return true;
 }
 
-// Deterministic seed from the pair's geometry (splitmix-style mixing), so that a pair gets the same
-// visibility samples whichever thread asks and in whichever order. Vertices enter relative to their
-// patch's first vertex and diameter, quantized, so that a scaled scene draws the same samples.
-std::uint64_t pair_seed(const Scene& scene, std::span<const Vec3> a, int pa, std::span<const Vec3> b, int pb) {
-  std::uint64_t h = 0x9E3779B97F4A7C15ull ^ (static_cast<std::uint64_t>(pa) << 32) ^ static_cast<std::uint32_t>(pb);
-  auto mix = [&h](std::uint64_t x) {
-    h ^= x + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
-    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
-    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
-    h ^= h >> 31;
+// True when the receiver's diameter is at most `ratio` times the gap between the bounding spheres
+// (about the vertex mean) of the two polygons.
+bool separated(std::span<const Vec3> receiver, std::span<const Vec3> source, double ratio) {
+  auto sphere = [](std::span<const Vec3> p) {
+    Vec3 c = Vec3::Zero();
+    for (const Vec3& v : p) c += v;
+    c /= static_cast<double>(p.size());
+    double r2 = 0.0;
+    for (const Vec3& v : p) r2 = std::max(r2, (v - c).squaredNorm());
+    return std::pair<Vec3, double>(c, std::sqrt(r2));
   };
-  auto add = [&](std::span<const Vec3> poly, int patch) {
-    const Patch& p = scene.patches[static_cast<std::size_t>(patch)];
-    const double size = polygon_diameter(p.vertices);
-    for (const Vec3& v : poly)
-      for (int k = 0; k < 3; ++k)
-        mix(static_cast<std::uint64_t>(std::llround((v[k] - p.vertices[0][k]) / size * 0x1p30)));
-  };
-  add(a, pa);
-  add(b, pb);
-  return h;
+  const auto [rc, rr] = sphere(receiver);
+  const auto [sc, sr] = sphere(source);
+  const double gap = (rc - sc).norm() - rr - sr;
+  return gap > 0.0 && 2.0 * rr <= ratio * gap;
 }
-
 
 }  // namespace
 
@@ -66,15 +62,13 @@ FormFactorEstimate FormFactorEvaluator::estimate(std::span<const Vec3> receiver,
   FormFactorEstimate e;
   // Two elements of one planar patch never exchange light.
   if (receiver_patch == source_patch) return e;
-  if (effects_.cull_facing_away && (behind(receiver, source) || behind(source, receiver))) {
-    culled_.fetch_add(1, std::memory_order_relaxed);
+  if (faces_away(receiver, source)) {
     e.facing_away = true;
     return e;
   }
   if (effects_.visibility) {
     // Classify first: a fully hidden pair needs no kernel call, a fully visible one no samples.
-    const PairClass c = visibility_->classify(receiver, receiver_patch, source, source_patch);
-    visibility_queries_.fetch_add(1, std::memory_order_relaxed);
+    const PairClass c = classify(receiver, receiver_patch, source, source_patch, nullptr, nullptr);
     if (c == PairClass::kFacingAway) {
       e.facing_away = true;
       e.visibility = 0.0;
@@ -103,46 +97,194 @@ FormFactorEstimate FormFactorEvaluator::estimate(std::span<const Vec3> receiver,
   return e;
 }
 
+double FormFactorEvaluator::pair_visibility(std::span<const Vec3> receiver, int receiver_patch,
+                                            std::span<const Vec3> source, int source_patch,
+                                            const std::vector<int>* occluders) const {
+  return weighted_visibility(receiver, receiver_patch, source, source_patch, occluders).first;
+}
+
 std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<const Vec3> receiver, int receiver_patch,
-                                                                  std::span<const Vec3> source,
-                                                                  int source_patch) const {
+                                                                  std::span<const Vec3> source, int source_patch,
+                                                                  const std::vector<int>* occluders) const {
   // Ray-traced form factors (Wallace, Elmquist & Haines 1989): the visible fraction weighted by the
-  // point-to-point kernel cos(theta_x) cos(theta_y) / r^2 over stratified point pairs, so that the
-  // near parts of a pair count as much as they contribute to F. The kernel is symmetric, so the
+  // point-to-point kernel over kx stratified receiver points, ky rays from each, so that the near
+  // parts of a pair count as much as they contribute to F. The kernel is symmetric, so the
   // fraction is the same in both directions and reciprocity is kept.
-  const std::uint64_t seed = pair_seed(scene_, receiver, receiver_patch, source, source_patch);
+  const std::uint64_t seed = pair_seed(receiver, receiver_patch, source, source_patch);
   const int kx = std::max(1, static_cast<int>(std::lround(std::sqrt(double(visibility_samples_)))));
   const int ky = std::max(1, (visibility_samples_ + kx - 1) / kx);
-  detail::Rng rx(detail::mix_seed(seed, 1)), ry(detail::mix_seed(seed, 2));
-  thread_local std::vector<Vec2> ux, uy;
+  detail::Rng rx(detail::mix_seed(seed, 1));
+  thread_local std::vector<Vec2> ux;
   detail::stratified_unit_square(kx, rx, &ux);
-  detail::stratified_unit_square(ky, ry, &uy);
-  const detail::PolygonSampler sx(receiver), sy(source);
-  const Vec3 nx = newell_normal(receiver).normalized(), ny = newell_normal(source).normalized();
-  double weight = 0.0, visible_weight = 0.0;
-  int visible = 0, count = 0;
-  for (const Vec2& a : ux) {
-    const Vec3 x = sx.point(a.x(), a.y());
-    for (const Vec2& b : uy) {
-      const Vec3 y = sy.point(b.x(), b.y());
-      const Vec3 d = y - x;
-      const double k = detail::point_pair_kernel(nx, ny, d);
-      const bool seen = !visibility_->segment_blocked(x, receiver_patch, y, source_patch);
-      weight += k;
-      visible_weight += seen ? k : 0.0;
-      visible += seen ? 1 : 0;
-      ++count;
+  const detail::PolygonSampler sx(receiver);
+  const Vec3 nx = newell_normal(receiver).normalized();
+  KernelVisibility sum;
+  for (std::size_t i = 0; i < ux.size(); ++i) {
+    const KernelVisibility k = visibility_from_point(sx.point(ux[i].x(), ux[i].y()), nx, receiver_patch, source,
+                                                     source_patch, occluders, ky, detail::mix_seed(seed, 2 + i));
+    sum.visible += k.visible;
+    sum.weight += k.weight;
+    sum.visible_rays += k.visible_rays;
+    sum.rays += k.rays;
+  }
+  const double error = detail::fraction_error(sum.visible_rays, sum.rays);
+  if (!(sum.weight > 0.0)) return {sum.rays > 0 ? double(sum.visible_rays) / sum.rays : 1.0, error};
+  return {sum.visible / sum.weight, error};
+}
+
+KernelVisibility FormFactorEvaluator::visibility_from_point(const Vec3& x, const Vec3& nx, int patch_x,
+                                                           std::span<const Vec3> source, int source_patch,
+                                                           const std::vector<int>* occluders, int rays,
+                                                           std::uint64_t seed) const {
+  KernelVisibility k;
+  if (rays <= 0) return k;
+  detail::Rng rng(seed);
+  thread_local std::vector<Vec2> uv;
+  detail::stratified_unit_square(rays, rng, &uv);
+  const detail::PolygonSampler sampler(source);
+  const Vec3 ny = scene_.patches[static_cast<std::size_t>(source_patch)].normal;
+  for (const Vec2& s : uv) {
+    const Vec3 y = sampler.point(s.x(), s.y());
+    const double w = detail::point_pair_kernel(nx, ny, y - x);
+    if (!(w > 0.0)) continue;  // a ray that carries no weight is not cast
+    const bool blocked = occluders != nullptr ? visibility_->segment_blocked_among(x, patch_x, y, source_patch, *occluders)
+                                              : visibility_->segment_blocked(x, patch_x, y, source_patch);
+    ++k.rays;
+    k.weight += w;
+    if (!blocked) {
+      ++k.visible_rays;
+      k.visible += w;
     }
   }
-  const double error = detail::fraction_error(visible, count);
-  if (!(weight > 0.0)) return {count > 0 ? double(visible) / count : 1.0, error};
-  return {visible_weight / weight, error};
+  return k;
+}
+
+bool FormFactorEvaluator::faces_away(std::span<const Vec3> a, std::span<const Vec3> b) const {
+  if (!effects_.cull_facing_away || !(behind(a, b) || behind(b, a))) return false;
+  culled_.fetch_add(1, std::memory_order_relaxed);
+  return true;
+}
+
+double FormFactorEvaluator::point_factor(const Vec3& x, const Vec3& n, std::span<const Vec3> source) const {
+  point_factors_.fetch_add(1, std::memory_order_relaxed);
+  return point_to_polygon(x, n, source, kLambertSumOnly);
+}
+
+double FormFactorEvaluator::point_factor(const Vec3& x, const Vec3& n, const Vec3& inward,
+                                         std::span<const Vec3> source) const {
+  point_factors_.fetch_add(1, std::memory_order_relaxed);
+  return point_to_polygon_limit(x, n, inward, source);
+}
+
+PairFormFactor FormFactorEvaluator::analytic(std::span<const Vec3> receiver, std::span<const Vec3> source) const {
+  evaluations_.fetch_add(1, std::memory_order_relaxed);
+  return polygon_to_polygon(receiver, source, kSolverPairTolerance);
+}
+
+double FormFactorEvaluator::receiver_factor(std::span<const Vec3> receiver, std::span<const Vec3> source,
+                                            double centroid_ratio) const {
+  // Within a receiver's size of the source a fixed Gauss rule cannot follow the factor's rise
+  // towards it (~1e-3 off next to a shared edge): the closed form there.
+  if (!separated(receiver, source, 1.0)) return analytic(receiver, source).from_to;
+  int points = 0;
+  const double f = receiver_factor_by_distance(receiver, source, centroid_ratio, &points);
+  point_factors_.fetch_add(static_cast<std::uint64_t>(points), std::memory_order_relaxed);
+  return f;
+}
+
+PairClass FormFactorEvaluator::classify(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b,
+                                        const std::vector<int>* candidates, std::vector<int>* occluders) const {
+  if (!effects_.visibility) return PairClass::kFullyVisible;
+  shaft_queries_.fetch_add(1, std::memory_order_relaxed);
+  return visibility_->classify_among(a, patch_a, b, patch_b, candidates, occluders);
+}
+
+FormFactorEstimate FormFactorEvaluator::sampled(const SurfaceSampler& p, const SurfaceSampler& q, int samples,
+                                                std::uint64_t seed) const {
+  evaluations_.fetch_add(1, std::memory_order_relaxed);
+  FormFactorEstimate e;
+  const int n = std::max(1, samples);
+  detail::Rng rng(seed);
+  // Stratified on both sides: the i-th pair takes the i-th stratum of each side, the strata of q
+  // permuted so that the pairs do not line up.
+  thread_local std::vector<int> order;
+  order.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) order[static_cast<std::size_t>(i)] = i;
+  for (int i = n - 1; i > 0; --i) std::swap(order[static_cast<std::size_t>(i)], order[rng.below(static_cast<std::uint64_t>(i + 1))]);
+  double sum = 0.0, sum2 = 0.0, weight = 0.0, visible_weight = 0.0;
+  int visible = 0, counted = 0;
+  for (int i = 0; i < n; ++i) {
+    Vec3 x, y;
+    const int px = p.sample((i + rng.uniform()) / n, rng.uniform(), rng.uniform(), &x);
+    const int py = q.sample((order[static_cast<std::size_t>(i)] + rng.uniform()) / n, rng.uniform(), rng.uniform(), &y);
+    double k = 0.0;
+    if (px != py) {
+      const Vec3& nx = scene_.patches[static_cast<std::size_t>(px)].normal;
+      const Vec3& ny = scene_.patches[static_cast<std::size_t>(py)].normal;
+      k = detail::point_pair_kernel(nx, ny, y - x) / std::numbers::pi;
+    }
+    double kv = k;
+    if (k > 0.0) {
+      ++counted;
+      weight += k;
+      if (effects_.visibility && visibility_->segment_blocked(x, px, y, py)) kv = 0.0;
+      else ++visible, visible_weight += k;
+    }
+    sum += kv;
+    sum2 += kv * kv;
+  }
+  const double mean = sum / n;
+  const double variance = std::max(0.0, sum2 / n - mean * mean);
+  const double exchange = p.area() * q.area() * mean;  // A_p F(p -> q)
+  e.value = exchange / p.area();
+  e.reverse = exchange / q.area();
+  e.unoccluded = weight > 0.0 ? p.area() * q.area() * (weight / n) / p.area() : 0.0;
+  e.visibility = weight > 0.0 ? visible_weight / weight : 0.0;
+  e.partial = counted > 0 && visible < counted && visible > 0;
+  e.error = q.area() * std::sqrt(variance / n);
+  e.facing_away = counted == 0;
+  return e;
+}
+
+std::uint64_t FormFactorEvaluator::pair_seed(std::span<const Vec3> a, int pa, std::span<const Vec3> b, int pb) const {
+  // splitmix-style mixing of the vertices relative to their patch's first vertex and diameter,
+  // quantized, so that a scaled scene draws the same samples, in any thread and any order.
+  std::uint64_t h = 0x9E3779B97F4A7C15ull ^ (static_cast<std::uint64_t>(pa) << 32) ^ static_cast<std::uint32_t>(pb);
+  auto mix = [&h](std::uint64_t x) {
+    h ^= x + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+    h ^= h >> 31;
+  };
+  auto add = [&](std::span<const Vec3> poly, int patch) {
+    const Patch& p = scene_.patches[static_cast<std::size_t>(patch)];
+    const double size = polygon_diameter(p.vertices);
+    for (const Vec3& v : poly)
+      for (int k = 0; k < 3; ++k)
+        mix(static_cast<std::uint64_t>(std::llround((v[k] - p.vertices[0][k]) / size * 0x1p30)));
+  };
+  add(a, pa);
+  add(b, pb);
+  return h;
+}
+
+Work FormFactorEvaluator::work() const {
+  Work w;
+  w.point_factor_evaluations = point_factors_.load(std::memory_order_relaxed);
+  w.form_factor_evaluations = evaluations_.load(std::memory_order_relaxed);
+  w.shaft_queries = shaft_queries_.load(std::memory_order_relaxed);
+  if (visibility_ != nullptr) w.segment_queries = visibility_->counters().segment_queries.load(std::memory_order_relaxed);
+  return w;
 }
 
 PairFormFactor FormFactorEvaluator::unoccluded(std::span<const Vec3> receiver, std::span<const Vec3> source) const {
+  if (kernel_ == FormFactorKernel::kAnalytic) return analytic(receiver, source);
   evaluations_.fetch_add(1, std::memory_order_relaxed);
-  if (kernel_ == FormFactorKernel::kAnalytic) return polygon_to_polygon(receiver, source, kSolverPairTolerance);
-  return {receiver_gauss_factor(receiver, source), receiver_gauss_factor(source, receiver)};
+  int points_r = 0, points_s = 0;
+  const PairFormFactor f{receiver_gauss_factor(receiver, source, kLambertSumOnly, &points_r),
+                         receiver_gauss_factor(source, receiver, kLambertSumOnly, &points_s)};
+  point_factors_.fetch_add(static_cast<std::uint64_t>(points_r + points_s), std::memory_order_relaxed);
+  return f;
 }
 
 }  // namespace hrad

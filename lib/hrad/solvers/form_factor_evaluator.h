@@ -6,15 +6,16 @@
 #include <cstdint>
 #include <span>
 #include <utility>
+#include <vector>
 
 #include "hrad/core/scene.h"
 #include "hrad/core/types.h"
 #include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/solvers/effects.h"
+#include "hrad/solvers/work.h"
+#include "hrad/visibility/visibility.h"
 
 namespace hrad {
-
-class Visibility;
 
 /// The accuracy the solvers ask of polygon_to_polygon(): far below any discretisation or visibility
 /// error, and closure in a closed room still holds to ~1e-9, so B = E / (1 - rho) to ~1e-9 / (1 - rho)
@@ -51,8 +52,28 @@ struct FormFactorEstimate {
   bool partial = false;
 };
 
-/// Thread-safe: estimate() may be called from many threads; counters are atomic, and each call
-/// is deterministic (the visibility sampling seed is derived from the pair's geometry).
+/// The surfaces below a node of the clustered hierarchy (an element or a cluster), for the sampled
+/// factor between two nodes.
+class SurfaceSampler {
+ public:
+  virtual ~SurfaceSampler() = default;
+  virtual double area() const = 0;
+  /// A point uniform by area on the surfaces from three numbers in [0, 1); returns its patch.
+  virtual int sample(double w, double u, double v, Vec3* point) const = 0;
+};
+
+/// Kernel-weighted visibility of a polygon from a point (Wallace, Elmquist & Haines 1989): sums over
+/// the rays of the point-to-point kernel cos(theta_x) cos(theta_y) / r^2, and of it where the ray is
+/// not blocked. visible / weight is the visible fraction of the point's factor to the polygon.
+struct KernelVisibility {
+  double visible = 0.0;
+  double weight = 0.0;
+  int visible_rays = 0;
+  int rays = 0;  ///< rays that carry weight (both points in front of each other)
+};
+
+/// Thread-safe: every method may be called from many threads; counters are atomic, and each call
+/// is deterministic (sampling seeds come from the pair's geometry or the caller).
 class FormFactorEvaluator {
  public:
   /// `visibility` may be null only when `effects.visibility` is false. `visibility_samples` is the
@@ -67,22 +88,73 @@ class FormFactorEvaluator {
   FormFactorEstimate estimate(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
                               int source_patch) const;
 
-  /// Kernel calls (polygon_to_polygon) so far; one call gives both directions.
+  /// True (and counted as culled) when the effects cull facing-away pairs and one polygon lies
+  /// wholly on or behind the other's plane: their factor is exactly 0.
+  bool faces_away(std::span<const Vec3> a, std::span<const Vec3> b) const;
+
+  /// F(dA_x -> source), unoccluded, for a point x with unit normal n (point_to_polygon()).
+  double point_factor(const Vec3& x, const Vec3& n, std::span<const Vec3> source) const;
+  /// The same approached from inside x's element along `inward` (point_to_polygon_limit()): the
+  /// factor's one-sided limit where x lies in the source's plane, e.g. on a shared edge.
+  double point_factor(const Vec3& x, const Vec3& n, const Vec3& inward, std::span<const Vec3> source) const;
+
+  /// Both directions of the unoccluded factor by the closed form (polygon_to_polygon() at
+  /// kSolverPairTolerance), whatever the evaluator's kernel.
+  PairFormFactor analytic(std::span<const Vec3> receiver, std::span<const Vec3> source) const;
+
+  /// F(receiver -> source) by receiver_factor_by_distance(): one point where the receiver is small
+  /// against its distance to the source (diameter <= centroid_ratio x gap), Gauss points otherwise.
+  double receiver_factor(std::span<const Vec3> receiver, std::span<const Vec3> source, double centroid_ratio) const;
+
+  /// Visibility::classify_among() (see there); kFullyVisible without a query when the effects
+  /// need no visibility.
+  PairClass classify(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b,
+                     const std::vector<int>* candidates, std::vector<int>* occluders) const;
+
+  /// Kernel-weighted visibility of `source` from the point x (unit normal nx, on patch_x) by `rays`
+  /// stratified points of the source (deterministic in `seed`); only the patches `occluders` can
+  /// block when it is not null (a pair's occluders from classify()).
+  KernelVisibility visibility_from_point(const Vec3& x, const Vec3& nx, int patch_x, std::span<const Vec3> source,
+                                         int source_patch, const std::vector<int>* occluders, int rays,
+                                         std::uint64_t seed) const;
+
+  /// Kernel-weighted visible fraction of a partly visible pair from the evaluator's number of point
+  /// pairs, stratified on both polygons (Wallace, Elmquist & Haines 1989), deterministic in the
+  /// pair's geometry; only `occluders` can block when not null.
+  double pair_visibility(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
+                         int source_patch, const std::vector<int>* occluders) const;
+
+  /// Factor between the surfaces of two nodes by `samples` stratified point pairs (uniform by area
+  /// on each side): F(p -> q) = A_q mean(cos cos V / (pi r^2)), the visibility V by rays through the
+  /// whole scene. Unbiased, reciprocal by construction; `error` is its standard error. value
+  /// F(p -> q), reverse F(q -> p), visibility the kernel-weighted visible fraction.
+  FormFactorEstimate sampled(const SurfaceSampler& p, const SurfaceSampler& q, int samples, std::uint64_t seed) const;
+
+  /// Deterministic seed for sampling a pair of polygons on patches pa and pb (from their geometry,
+  /// relative to their patches: a scaled scene draws the same samples).
+  std::uint64_t pair_seed(std::span<const Vec3> a, int pa, std::span<const Vec3> b, int pb) const;
+
+  /// Counters so far (segment queries from the visibility oracle, which counts every ray).
+  Work work() const;
+  /// Kernel calls (analytic, Gauss-point and sampled element factors) so far.
   std::uint64_t evaluations() const { return evaluations_.load(std::memory_order_relaxed); }
-  /// Visibility oracle calls (pair classifications and estimates) so far.
-  std::uint64_t visibility_queries() const { return visibility_queries_.load(std::memory_order_relaxed); }
+  /// Shaft classifications so far.
+  std::uint64_t visibility_queries() const { return shaft_queries_.load(std::memory_order_relaxed); }
   /// Pairs culled as facing away so far.
   std::uint64_t culled_pairs() const { return culled_.load(std::memory_order_relaxed); }
 
   const Effects& effects() const { return effects_; }
   FormFactorKernel kernel() const { return kernel_; }
+  int visibility_samples() const { return visibility_samples_; }
+  const Scene& scene() const { return scene_; }
 
  private:
   // Both directions of the unoccluded factor with the chosen kernel; counts one evaluation.
   PairFormFactor unoccluded(std::span<const Vec3> receiver, std::span<const Vec3> source) const;
   // Kernel-weighted visible fraction of a partially visible pair and its error estimate.
   std::pair<double, double> weighted_visibility(std::span<const Vec3> receiver, int receiver_patch,
-                                                std::span<const Vec3> source, int source_patch) const;
+                                                std::span<const Vec3> source, int source_patch,
+                                                const std::vector<int>* occluders = nullptr) const;
 
   const Scene& scene_;
   Effects effects_;
@@ -90,7 +162,8 @@ class FormFactorEvaluator {
   int visibility_samples_;
   FormFactorKernel kernel_;
   mutable std::atomic<std::uint64_t> evaluations_{0};
-  mutable std::atomic<std::uint64_t> visibility_queries_{0};
+  mutable std::atomic<std::uint64_t> point_factors_{0};
+  mutable std::atomic<std::uint64_t> shaft_queries_{0};
   mutable std::atomic<std::uint64_t> culled_{0};
 };
 

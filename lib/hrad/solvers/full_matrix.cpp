@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -12,22 +13,22 @@
 #include <tbb/parallel_for.h>
 
 #include "hrad/core/error.h"
-#include "hrad/core/huge_page_allocator.h"
 #include "hrad/core/progress.h"
+#include "hrad/solvers/dense_links.h"
+#include "hrad/solvers/iteration.h"
+#include "hrad/solvers/push_pull.h"
 #include "hrad/solvers/solver_context.h"
 #include "hrad/solvers/work_estimate.h"
 
 namespace hrad {
 namespace {
 
-using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
 // F(i, j) = F(element i -> element j). Row i evaluates the pairs (i, j > i), writing F(i, j) and
 // F(j, i) from one kernel call: each entry is written by exactly one task, so the result does not
 // depend on the schedule.
 // `f` views zeroed storage.
 void fill_matrix(SolverContext& ctx, const ElementHierarchy& h, const std::vector<NodeId>& leaves,
-                 Eigen::Map<RowMatrix> f) {
+                 Eigen::Map<DenseLinks::RowMatrix> f) {
   const int n = static_cast<int>(leaves.size());
   const FormFactorEvaluator& evaluator = ctx.evaluator();
   const long long total_pairs = static_cast<long long>(n) * (n - 1) / 2;
@@ -55,6 +56,7 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
   ElementHierarchy h(scene);
   const double max_area = ctx.max_area();
   ctx.summary().figures["max_area"] = max_area;
+  ctx.summary().used.max_area = max_area;
   // The dense F and, for LU, one system matrix at a time: refuse up front what cannot fit rather
   // than fail in the allocator halfway through. Elements before meshing: a patch of area A splits
   // into quarters until they are <= max_area (about: quads that are not parallelograms split unevenly).
@@ -71,21 +73,21 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
   }
   const std::vector<NodeId> leaves = h.all_leaves();
   const int n = static_cast<int>(leaves.size());
-  const std::size_t links = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+  const std::size_t factors = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
   if (!ctx.effects().bounces) {
     ctx.set_direct("nothing reflects: B = E");
     return ctx.finish(h, 0, out);
   }
-  ctx.progress(fmt::format("full: {} elements, {} form factors", n, links));
+  ctx.progress(fmt::format("full: {} elements, {} form factors", n, factors));
 
-  // Huge pages (BigVector): at 17k elements F is 2.3 GB; zero-filling a fresh 1.6 GB block took 4.5 s
-  // in 4 kB pages on the machine these results come from, 1.2 s in huge pages.
-  BigVector<double> storage(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0.0);
-  const Eigen::Map<RowMatrix> f(storage.data(), n, n);
+  DenseLinks links(leaves, leaves);
   {
     auto phase = ctx.phase("form_factors");
-    fill_matrix(ctx, h, leaves, f);
+    fill_matrix(ctx, h, leaves, links.matrix());
   }
+  const Eigen::Map<const DenseLinks::RowMatrix> f = std::as_const(links).matrix();
+  ctx.summary().work.gather_terms = links.terms();
+  ctx.summary().work.link_bytes = links.bytes();
 
   const int channels = ctx.channels();
   Eigen::MatrixXd e(n, channels), rho(n, channels);
@@ -114,13 +116,12 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
         break;
       }
       case LinearSolver::kJacobi: {
-        while (true) {
-          Eigen::MatrixXd next = e + (rho.array() * (f * b).array()).matrix();
-          const double largest = (next - e).cwiseAbs().maxCoeff();  // reflected part: see SolveOptions::tolerance
-          const double change = (next - b).cwiseAbs().maxCoeff();
-          b.swap(next);
-          if (ctx.record_iteration(stopping_change(change, largest))) break;
-        }
+        const PushPull push_pull(scene, h, nullptr, channels);
+        NodeField field = push_pull.make_field();
+        const LinkOperator* ops[] = {&links};
+        iterate(ctx, push_pull, ops, field, radiosity_bound(scene));
+        for (int i = 0; i < n; ++i)
+          for (int c = 0; c < channels; ++c) b(i, c) = field.radiosity[static_cast<std::size_t>(leaves[static_cast<std::size_t>(i)])][c];
         break;
       }
       case LinearSolver::kGaussSeidel: {
@@ -145,7 +146,7 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
     if (channels == 1) copy_gray(node.radiosity);
   }
   h.pull_radiosity();
-  return ctx.finish(h, links, out);
+  return ctx.finish(h, factors, out);
 }
 
 }  // namespace hrad

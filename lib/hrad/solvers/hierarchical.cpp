@@ -1,46 +1,52 @@
 #include "hrad/solvers/hierarchical.h"
 
-#include "hrad/geometry/polygon.h"
-
 #include <algorithm>
 #include <cmath>
-#include <string>
+#include <memory>
 #include <vector>
 
-#include "hrad/solvers/hierarchical_leaf_factors.h"
-#include "hrad/solvers/hierarchical_refine.h"
+#include <fmt/format.h>
+
+#include "hrad/geometry/polygon.h"
+#include "hrad/solvers/cluster_transfer.h"
+#include "hrad/solvers/cluster_tree.h"
+#include "hrad/solvers/hsa_links.h"
+#include "hrad/solvers/iteration.h"
+#include "hrad/solvers/leaf_links.h"
+#include "hrad/solvers/push_pull.h"
+#include "hrad/solvers/refine.h"
+#include "hrad/solvers/refinement_oracle.h"
 #include "hrad/solvers/solver_context.h"
 
 namespace hrad {
 namespace {
 
-
-/// Jacobi iterations of gather and push-pull (HSA 1991 sec. 4, "SolveSystem"). Returns false when
-/// the iteration stopped without converging.
-///
-/// Every link is resolved to leaves (hierarchical_leaf_factors.h), whose factors sum to at most 1
-/// up to quadrature and visibility sampling, so rho * K contracts for rho < 1. Sampled visibility
-/// or quadrature could still push a row sum above 1 as rho -> 1; that is reported as a failure
-/// (twice the physical bound E_max / (1 - rho_max) is never reached by a contracting iteration
-/// started at B = E), before any overflow.
-bool solve_links(SolverContext& ctx, ElementHierarchy& h, const detail::LeafLinks& links, double bound) {
-  auto phase = ctx.phase("solve");
-  h.pull_radiosity();  // interior nodes hold their leaves' area average (for the output)
-  while (true) {
-    detail::gather_leaf_links(h, links);
-    const double change = push_pull(h, ctx.channels());
-    if (ctx.record_iteration(change)) break;
-    double largest = 0.0;
-    for (int p = 0; p < h.patch_count(); ++p) largest = std::max(largest, h.node(h.root(p)).radiosity.maxCoeff());
-    if (largest > 2.0 * bound) {
-      ctx.set_failed("diverging: the mean radiosity of a patch (" + std::to_string(largest) +
-                     ") passed twice the bound E_max / (1 - rho_max) = " + std::to_string(bound) +
-                     " after " + std::to_string(ctx.summary().iterations) +
-                     " iterations; the links' factors sum above 1 on some elements (try a smaller --feps or more --visibility-samples)");
-      break;
-    }
+// The link operators of one refinement: the HSA operator over every link, or (Push::kLeaf) the
+// leaf-resolved operator over links between elements and the HSA operator over cluster links.
+struct Operators {
+  std::unique_ptr<HsaLinks> hsa;
+  std::unique_ptr<LeafLinks> leaf;
+  std::vector<const LinkOperator*> all() const {
+    std::vector<const LinkOperator*> ops;
+    if (leaf) ops.push_back(leaf.get());
+    if (hsa) ops.push_back(hsa.get());
+    return ops;
   }
-  return ctx.summary().termination == Termination::kConverged;
+};
+
+Operators make_operators(const SolveOptions& options, const ElementHierarchy& h, const ClusterTree* tree,
+                         const ClusterTransfer& geometry, const FormFactorEvaluator& evaluator,
+                         const std::vector<Link>& links) {
+  Operators ops;
+  if (options.push == Push::kHsa) {
+    ops.hsa = std::make_unique<HsaLinks>(links, h, tree, geometry);
+    return ops;
+  }
+  std::vector<Link> elements, clusters;
+  for (const Link& l : links) (is_cluster(l.p) || is_cluster(l.q) ? clusters : elements).push_back(l);
+  ops.leaf = std::make_unique<LeafLinks>(h, evaluator, elements);
+  ops.hsa = std::make_unique<HsaLinks>(clusters, h, tree, geometry);
+  return ops;
 }
 
 }  // namespace
@@ -54,106 +60,137 @@ HierarchicalTolerances hierarchical_tolerances(const Scene& scene, const SolveOp
   return t;
 }
 
-std::optional<SolveSummary> start_hierarchical(SolverContext& ctx, const ElementHierarchy& h,
-                                              const HierarchicalTolerances& t, Solution* out) {
+bool uses_clustering(const Scene& scene, const SolveOptions& options) {
+  switch (options.clustering) {
+    case Clustering::kOn: return scene.patches.size() > 1;
+    case Clustering::kOff: return false;
+    case Clustering::kAuto: return scene.patches.size() >= kAutoClusteringPatches;
+  }
+  return false;
+}
+
+SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requested, Solution* out) {
+  // Links join elements of very different sizes at coarse levels (a whole floor to a small light),
+  // where a fixed receiver quadrature is neither accurate nor reciprocal: the oracle uses the
+  // analytic kernel where its own quadratures disagree.
+  SolveOptions options = requested;
+  options.kernel = FormFactorKernel::kAnalytic;
+  const HierarchicalTolerances t = hierarchical_tolerances(scene, options);
+  options.feps = t.feps;
+  options.bfeps = t.bfeps;
+  options.aeps = t.aeps;
+  SolverContext ctx(scene, options, Method::kHierarchical);
+  ElementHierarchy h(scene);
   auto& figures = ctx.summary().figures;
   figures["feps"] = t.feps;
   figures["bfeps"] = t.bfeps;
   figures["aeps"] = t.aeps;
-  if (ctx.effects().bounces) return std::nullopt;
-  ctx.set_direct("nothing reflects: B = E, no links needed");
-  figures["refine_passes"] = 0;
-  figures["link_pairs"] = 0;
-  return ctx.finish(h, 0, out);
-}
-
-double radiosity_bound(const Scene& scene) {
-  double e = 0.0, rho = 0.0;
-  for (const Material& m : scene.materials) {
-    e = std::max(e, m.emission.maxCoeff());
-    rho = std::max(rho, m.reflectance.maxCoeff());
+  if (!ctx.effects().bounces) {
+    ctx.set_direct("nothing reflects: B = E, no links needed");
+    return ctx.finish(h, 0, out);
   }
-  return e / (1.0 - rho);
-}
+  std::unique_ptr<ClusterTree> tree;
+  if (uses_clustering(scene, options)) {
+    auto phase = ctx.phase("clusters");
+    tree = std::make_unique<ClusterTree>(scene);
+    figures["clusters"] = static_cast<double>(tree->size());
+    ctx.summary().effects.reasons.push_back(
+        "clustering: on (a volume hierarchy above the patches, linked from one root self-link)");
+  }
+  const ClusterTransfer geometry(scene, h, tree.get());
+  std::vector<Rgb> cluster_radiosity(tree ? tree->size() : 0, Rgb::Zero());
+  const ErrorBoundOracle oracle(h, tree.get(), geometry, ctx.evaluator(),
+                                {t.feps, t.bfeps, t.aeps, options.push == Push::kHsa},
+                                source_weights(scene, ctx.channels()), ctx.channels(), &cluster_radiosity);
 
-void end_hierarchical(SolverContext& ctx, ElementHierarchy& h) {
+  std::vector<Candidate> work;
+  if (tree) {
+    work.push_back({tree->root(), tree->root()});
+  } else {
+    // HSA: every pair of input patches is refined once and its links are gathered both ways.
+    const int n = static_cast<int>(scene.patches.size());
+    work.reserve(static_cast<std::size_t>(n) * static_cast<std::size_t>(std::max(0, n - 1)) / 2);
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j) work.push_back({h.root(i), h.root(j)});
+  }
+
+  const double bound = radiosity_bound(scene);
+  std::vector<Link> links;
+  Operators ops;
+  std::vector<PointValues> point_radiosity;  // the leaves' radiosity at their points (for display)
+  std::uint64_t candidates = 0;
+  int passes = 0;
+  while (true) {
+    RefineResult refined;
+    {
+      auto phase = ctx.phase("refine");
+      refined = refine(h, tree.get(), oracle, std::move(work), [&](std::string_view line) { ctx.progress(line); });
+    }
+    ++passes;
+    candidates += refined.candidates;
+    const bool changed = refined.splits > 0 || refined.links.size() != links.size();
+    links = std::move(refined.links);
+    {
+      auto phase = ctx.phase("links");
+      ops = make_operators(options, h, tree.get(), geometry, ctx.evaluator(), links);
+    }
+    ctx.progress(fmt::format("hierarchical: pass {}: {} elements, {} links", passes, h.size(), directed_link_count(links)));
+    // A re-refinement that changed nothing leaves the last solution consistent with its links.
+    if (passes > 1 && !changed) break;
+    const PushPull push_pull(scene, h, tree.get(), ctx.channels());
+    NodeField field = push_pull.make_field();
+    const std::vector<const LinkOperator*> all = ops.all();
+    bool converged = false;
+    {
+      auto phase = ctx.phase("solve");
+      converged = iterate(ctx, push_pull, all, field, bound);
+    }
+    push_pull.store(field, h, &cluster_radiosity);
+    if (options.push == Push::kHsa) point_radiosity = std::move(field.point_radiosity);
+    if (!converged) break;
+    // BF refinement: the tolerance depends on B, so refine again with the new radiosity (HSA sec. 4.2).
+    if (t.bfeps <= 0.0 || passes >= kMaxRefinePasses) break;
+    work.clear();
+    for (const Link& l : links) work.push_back({l.p, l.q});
+  }
+
+  // Figures of the mesh and the links.
   double min_area = INFINITY;
   int max_depth = 0;
   for (const NodeId leaf : h.all_leaves()) {
-    const ElementNode& node = h.node(leaf);
-    min_area = std::min(min_area, node.area);
-    max_depth = std::max(max_depth, node.depth);
+    min_area = std::min(min_area, h.node(leaf).area);
+    max_depth = std::max(max_depth, h.node(leaf).depth);
   }
   if (ctx.channels() == 1)
     for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity);
-  ctx.summary().figures["min_element_area"] = std::isfinite(min_area) ? min_area : 0.0;
-  ctx.summary().figures["max_depth"] = max_depth;
-}
-
-SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requested, Solution* out) {
-  // Always the analytic kernel: HSA's links join elements of very different sizes at coarse levels
-  // (a whole floor to a small light), where a fixed receiver quadrature is inaccurate and not
-  // reciprocal (the Cornell box's floor came out 8% dark with it); the closed form is exact at any
-  // size and distance, and reciprocal, which the two-way links rely on.
-  SolveOptions options = requested;
-  options.kernel = FormFactorKernel::kAnalytic;
-  SolverContext ctx(scene, options, Method::kHierarchical);
-  ElementHierarchy h(scene);
-  const HierarchicalTolerances t = hierarchical_tolerances(scene, options);
-  ctx.summary().effects.reasons.push_back("kernel: analytic (hierarchical links need exact, reciprocal factors at every size)");
-  if (auto done = start_hierarchical(ctx, h, t, out)) return *done;
-  auto& figures = ctx.summary().figures;
-
-  const detail::RefineTolerances tol{t.feps, t.bfeps, t.aeps, detail::source_weights(scene, ctx.channels())};
-  const int channels = ctx.channels();
-  // Initial candidates: every pair of input patches (HSA: "for all patches p, q"); each pair is
-  // refined once and its links are gathered both ways.
-  std::vector<detail::RefineCandidate> work;
-  const int n = static_cast<int>(scene.patches.size());
-  work.reserve(static_cast<std::size_t>(n) * static_cast<std::size_t>(n - 1) / 2);
-  for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n; ++j) work.push_back(detail::candidate(h.root(i), h.root(j)));
-
-  std::vector<detail::LinkPair> pairs;
-  detail::LeafLinks links;
-  const double bound = radiosity_bound(scene);
-  int passes = 0;
-  while (true) {
-    detail::RefineResult refined;
-    {
-      auto phase = ctx.phase("refine");
-      refined = detail::refine_pairs(h, ctx.evaluator(), std::move(work), tol, channels);
-    }
-    ++passes;
-    const bool changed = refined.splits > 0;
-    pairs = std::move(refined.links);
-    {
-      auto phase = ctx.phase("leaf_factors");
-      links = detail::leaf_links(h, pairs);
-    }
-    ctx.progress("hierarchical: pass " + std::to_string(passes) + ": " + std::to_string(h.size()) + " nodes, " +
-                 std::to_string(detail::directed_link_count(pairs)) + " links, " + std::to_string(links.size()) +
-                 " leaf factors");
-    // A re-refinement that changed nothing leaves the last solution consistent with its links.
-    if (passes > 1 && !changed) break;
-    if (!solve_links(ctx, h, links, bound)) break;
-    // BF refinement: the tolerance depends on B, so refine again with the new radiosity (HSA sec. 4.2).
-    if (t.bfeps <= 0.0 || passes >= kMaxRefinePasses) break;
-    work = pairs;
+  std::size_t partial = 0, with_cluster = 0;
+  for (const Link& l : links) {
+    partial += l.partial ? 1 : 0;
+    with_cluster += (is_cluster(l.p) || is_cluster(l.q)) ? 1 : 0;
   }
-
-  end_hierarchical(ctx, h);
+  figures["min_element_area"] = std::isfinite(min_area) ? min_area : 0.0;
+  figures["max_depth"] = max_depth;
   figures["refine_passes"] = passes;
-  figures["link_pairs"] = static_cast<double>(pairs.size());
-  figures["leaf_links"] = static_cast<double>(links.size());
-  SolveSummary summary = ctx.finish(h, detail::directed_link_count(pairs), out);
-  if (out != nullptr && options.record_links) {
-    // One segment per link pair, between the elements' centroids (for figures of the links).
-    out->link_segments.clear();
-    out->link_segments.reserve(pairs.size());
-    for (const detail::LinkPair& pair : pairs)
-      out->link_segments.emplace_back(polygon_centroid(h.node(pair.p).polygon()), polygon_centroid(h.node(pair.q).polygon()));
+  figures["link_pairs"] = static_cast<double>(links.size());
+  figures["partial_links"] = static_cast<double>(partial);
+  figures["cluster_link_pairs"] = static_cast<double>(with_cluster);
+  Work& w = ctx.summary().work;
+  w.candidate_pairs = candidates;
+  for (const LinkOperator* op : ops.all()) {
+    w.gather_terms += op->terms();
+    w.link_bytes += op->bytes();
   }
+  std::vector<std::pair<Vec3, Vec3>> segments;
+  if (out != nullptr && options.record_links) {
+    // One segment per link, between the centres of the nodes it joins (for figures of the links).
+    segments.reserve(links.size());
+    for (const Link& l : links) segments.emplace_back(geometry.shape(l.p).centre, geometry.shape(l.q).centre);
+  }
+  if (ctx.channels() == 1)
+    for (PointValues& v : point_radiosity)
+      for (Rgb& b : v) copy_gray(b);
+  SolveSummary summary = ctx.finish(h, directed_link_count(links), out, point_radiosity);
+  if (out != nullptr) out->link_segments = std::move(segments);
   return summary;
 }
 

@@ -1,4 +1,6 @@
-// Links resolved to the leaves on both sides: HSA's push and pull with each leaf's own factor.
+// Links resolved to the leaves on both sides (`--push leaf`): HSA's push and pull with each leaf's own
+// factor. Exact per element in closed rooms, at a cost of one term per (leaf, link of the leaf or of
+// an ancestor): about n times the links on a leaf's path, not O(links) (hsa_links.h is).
 //
 // HSA 1991 gather at the link's receiver, an interior node a, and push the gathered irradiance
 // F(a -> q) B_q down to every leaf below a unchanged. A leaf thus receives its ancestors' average
@@ -22,10 +24,7 @@
 // analytic factor. Cost: one term per (leaf, link of the leaf or of an ancestor), computed once
 // per refinement in parallel, and two passes over them per iteration. A leaf far from the other
 // side against its size takes its factor at its centroid (receiver_factor_by_distance()); the
-// gather reads the factors grouped by leaf, in sequence. On the Cornell box at aeps = total/33333
-// (17057 elements, 75.6 M terms, 2 cores) these and huge pages took the leaf factors from 34.6 to
-// 9.0 s and the 21 iterations from 17.4 to 2.5 s (61.9 -> 20.6 s in all); the relative L2 error
-// against the sweep's reference stayed 1.371% (element field) and 1.097% (displayed).
+// gather reads the factors grouped by leaf, in sequence (hierarchical_benchmark measures it).
 #pragma once
 
 #include <cstddef>
@@ -36,16 +35,32 @@
 
 #include "hrad/core/huge_page_allocator.h"
 #include "hrad/mesh/element_hierarchy.h"
-#include "hrad/solvers/hierarchical_refine.h"
+#include "hrad/solvers/form_factor_evaluator.h"
+#include "hrad/solvers/link_operator.h"
+#include "hrad/solvers/refine.h"
 
-namespace hrad::detail {
+namespace hrad {
 
 /// The link pairs resolved to leaves. Pair k's p side is entries [pairs[k].p_first, + p_count),
 /// its q side [q_first, + q_count); `leaf` and `weight` are in this entry order (each side's mean
 /// reads them). The factors are stored grouped by leaf for the gather, which then reads them in
 /// sequence: leaf n's are [leaf_offsets[n], leaf_offsets[n + 1]) of `factor` and `other_side`,
 /// in increasing entry order. 24 bytes per entry plus 8 per node.
-struct LeafLinks {
+class LeafLinks final : public LinkOperator {
+ public:
+  /// Resolves `links` (between elements only) to leaves as described above. Deterministic order.
+  LeafLinks(const ElementHierarchy& hierarchy, const FormFactorEvaluator& evaluator, std::span<const Link> links);
+
+  /// For every pair adds to each leaf L of one side f(L -> other) times the weighted mean radiosity
+  /// of the other side's leaves (all channels). Parallel (the sides' means over pairs, then each
+  /// leaf's sum over its entries in entry order): the same bits at any thread count.
+  void gather(NodeField& field) const override;
+  /// Two per entry: its share of its side's mean, and its factor times the other side's mean.
+  std::uint64_t terms() const override { return 2 * leaf_.size(); }
+  std::uint64_t bytes() const override;
+  std::size_t size() const { return leaf_.size(); }
+
+ private:
   struct Pair {
     std::size_t p_first = 0, p_count = 0, q_first = 0, q_count = 0;
     /// Side 0 (p) or 1 (q) as [first, end).
@@ -53,24 +68,15 @@ struct LeafLinks {
       return s == 0 ? std::pair{p_first, p_first + p_count} : std::pair{q_first, q_first + q_count};
     }
   };
-  std::vector<Pair> pairs;
-  BigVector<NodeId> leaf;    ///< the leaf of each entry
-  BigVector<double> weight;  ///< A_leaf f / (A_p F(p -> q)): the leaf's share of its side's exchange
-  std::vector<std::uint64_t> leaf_offsets;
+  std::size_t nodes_ = 0;
+  std::vector<Pair> pairs_;
+  BigVector<NodeId> leaf_;    ///< the leaf of each entry
+  BigVector<double> weight_;  ///< A_leaf f / (A_p F(p -> q)): the leaf's share of its side's exchange
+  std::vector<std::uint64_t> leaf_offsets_;
   /// By leaf: f(leaf -> the other side's node), visible fraction included, and which side's mean
   /// it gathers (2 k for pair k's q side, 2 k + 1 for its p side).
-  BigVector<double> factor;
-  BigVector<std::uint32_t> other_side;
-  std::size_t size() const { return leaf.size(); }
+  BigVector<double> factor_;
+  BigVector<std::uint32_t> other_side_;
 };
 
-/// Resolves `pairs` (links with estimates) to leaves as described above. Deterministic order.
-LeafLinks leaf_links(const ElementHierarchy& hierarchy, std::span<const LinkPair> pairs);
-
-/// Sets every node's `gathered` to 0, then for every pair adds to each leaf L of one side
-/// f(L -> other) times the weighted mean radiosity of the other side's leaves (all channels).
-/// Parallel (the sides' means over pairs, then each leaf's sum over its entries in entry order):
-/// the same bits as the sequential loop over pairs, at any thread count.
-void gather_leaf_links(ElementHierarchy& hierarchy, const LeafLinks& links);
-
-}  // namespace hrad::detail
+}  // namespace hrad

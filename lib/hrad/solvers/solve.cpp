@@ -6,7 +6,6 @@
 
 #include "hrad/core/error.h"
 #include "hrad/core/memory.h"
-#include "hrad/solvers/clustered_hierarchical.h"
 #include "hrad/solvers/full_matrix.h"
 #include "hrad/solvers/hierarchical.h"
 #include "hrad/solvers/substructuring.h"
@@ -60,6 +59,8 @@ void validate_options(const SolveOptions& o) {
                             o.visibility_samples));
   if (o.clustering != Clustering::kAuto && o.clustering != Clustering::kOn && o.clustering != Clustering::kOff)
     throw Error(fmt::format("--clustering: unknown mode {}", static_cast<int>(o.clustering)));
+  if (o.push != Push::kHsa && o.push != Push::kLeaf)
+    throw Error(fmt::format("--push: unknown operator {}", static_cast<int>(o.push)));
   if (o.threads < 0) throw Error(fmt::format("--threads must be >= 0 (0 = all cores), got {}", o.threads));
 }
 
@@ -73,7 +74,6 @@ SolveSummary solve(const Scene& scene, const SolveOptions& options, Solution* ou
     case Method::kSubstructure:
       return solve_substructuring(scene, options, out);
     case Method::kHierarchical:
-      if (uses_clustering(scene, options)) return solve_clustered_hierarchical(scene, options, out);
       return solve_hierarchical(scene, options, out);
   }
   throw Error("--method: unknown method");
@@ -157,6 +157,20 @@ Clustering parse_clustering(std::string_view text) {
   if (text == "on") return Clustering::kOn;
   if (text == "off") return Clustering::kOff;
   throw Error(fmt::format("--clustering must be auto, on or off, got '{}'", text));
+}
+
+std::string_view to_string(Push push) {
+  switch (push) {
+    case Push::kHsa: return "hsa";
+    case Push::kLeaf: return "leaf";
+  }
+  return "unknown";
+}
+
+Push parse_push(std::string_view text) {
+  if (text == "hsa") return Push::kHsa;
+  if (text == "leaf") return Push::kLeaf;
+  throw Error(fmt::format("--push must be hsa or leaf, got '{}'", text));
 }
 
 EffectsMode parse_effects_mode(std::string_view text) {

@@ -14,6 +14,7 @@
 #include "hrad/core/solution.h"
 #include "hrad/solvers/effects.h"
 #include "hrad/solvers/form_factor_evaluator.h"
+#include "hrad/solvers/work.h"
 
 namespace hrad {
 
@@ -35,6 +36,12 @@ enum class Clustering {
   kAuto,  ///< on when the scene has at least kAutoClusteringPatches patches
   kOn,    ///< a cluster hierarchy over the patches, linked from one root self-link
   kOff,   ///< plain HSA: every pair of input patches is an initial link (k^2)
+};
+
+/// How a hierarchical solve gathers over its links (hierarchical.h).
+enum class Push {
+  kHsa,   ///< HSA 1991: gather at the linked nodes, push down, pull up; O(links + nodes) per iteration
+  kLeaf,  ///< each element link resolved to the leaves on both sides with their own factors
 };
 
 /// Clustering::kAuto turns clustering on from this many patches (below it the k^2 initial pairs
@@ -61,10 +68,11 @@ struct SolveOptions {
   double bfeps = 0.0;
   /// Hierarchical: smallest element area (HSA 1991 Aε, scene units squared); 0 = automatic.
   double aeps = 0.0;
-  /// Iterations stop when the largest change of any element's radiosity (any channel), divided
-  /// by the largest reflected radiosity B - E, falls below this. (Not by the largest B: a bright
-  /// emitter would then stop the iteration before any interreflection, e.g. after the direct light
-  /// when a 1 cm light sits in a 1 km room.)
+  /// Iterations stop when the estimated error of the returned radiosity, relative to the largest
+  /// reflected radiosity B - E, is below this: the last change of any element's radiosity (any
+  /// channel) times q / (1 - q), q the contraction per iteration estimated from successive changes
+  /// (a geometric tail; see SolverContext::record_iteration()). Relative to B - E rather than B: a
+  /// bright emitter would otherwise stop the iteration before any interreflection.
   double tolerance = 1e-6;
   /// Iterative methods give up (Termination::kMaxIterations) after this many iterations.
   int max_iterations = 10000;
@@ -79,6 +87,8 @@ struct SolveOptions {
   bool record_links = false;
   /// Hierarchical: clustering above the input polygons (see Clustering).
   Clustering clustering = Clustering::kAuto;
+  /// Hierarchical: the link operator (see Push).
+  Push push = Push::kHsa;
   /// Worker threads for the parallel phases; 0 = TBB's default (all cores).
   int threads = 0;
   /// Called with one line of progress for long phases (the CLI prints it on stderr); may be empty.
@@ -106,6 +116,11 @@ struct SolveSummary {
   std::size_t links = 0;            ///< interactions: n^2 (full), n*N (substructuring), links (hierarchical)
   std::uint64_t form_factor_evaluations = 0;
   std::uint64_t visibility_queries = 0;
+  /// What the solve did, counted where it was done (work.h).
+  Work work;
+  /// The options as the solve used them: automatic values (max_area, patch_area, feps, aeps)
+  /// filled in, the kernel the method used.
+  SolveOptions used;
   /// Wall-clock seconds per phase ("setup", "effects", "mesh", "form_factors", "solve",
   /// "refine", "output", ...) in the order they ran, and the whole solve.
   std::vector<std::pair<std::string, double>> seconds;
@@ -132,6 +147,9 @@ std::string_view to_string(LinearSolver solver);
 std::string_view to_string(EffectsMode mode);
 std::string_view to_string(FormFactorKernel kernel);
 std::string_view to_string(Clustering clustering);
+std::string_view to_string(Push push);
+/// Parses "hsa" | "leaf"; throws hrad::Error naming --push otherwise.
+Push parse_push(std::string_view text);
 /// Parses "auto" | "on" | "off"; throws hrad::Error naming --clustering otherwise.
 Clustering parse_clustering(std::string_view text);
 /// Parses "analytic" | "contour"; throws hrad::Error naming --kernel otherwise.

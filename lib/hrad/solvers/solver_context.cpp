@@ -27,6 +27,8 @@ SolverContext::SolverContext(const Scene& scene, const SolveOptions& options, Me
     : scene_(scene), options_(options) {
   validate_options(options);
   summary_.method = method;
+  summary_.used = options;
+  summary_.used.progress = nullptr;
   summary_.patches = scene.patches.size();
   if (options.threads > 0) thread_limit_ = std::make_unique<ThreadLimit>(options.threads);
   {
@@ -65,16 +67,28 @@ bool SolverContext::record_iteration(double change) {
     set_failed(fmt::format("non-finite radiosity at iteration {}", summary_.iterations));
     return true;
   }
-  if (change < options_.tolerance) {
+  const std::vector<double>& history = summary_.change_per_iteration;
+  const std::size_t k = history.size();
+  double rate = NAN;
+  if (k >= 2) {
+    rate = 0.0;
+    for (std::size_t i = std::max<std::size_t>(1, k >= 3 ? k - 3 : 1); i < k; ++i)
+      rate = std::max(rate, history[i - 1] > 0.0 ? history[i] / history[i - 1] : 0.0);
+  }
+  estimated_error_ = change == 0.0 ? 0.0 : (rate < 1.0 ? change * rate / (1.0 - rate) : INFINITY);
+  if (estimated_error_ < options_.tolerance) {
     summary_.termination = Termination::kConverged;
-    summary_.message = fmt::format("converged in {} iterations (relative change {:.3g} < tolerance {:.3g})",
-                                   summary_.iterations, change, options_.tolerance);
+    summary_.message =
+        fmt::format("converged in {} iterations (estimated relative error {:.3g} < tolerance {:.3g}; last change {:.3g}, "
+                    "contraction {:.3g} per iteration)",
+                    summary_.iterations, estimated_error_, options_.tolerance, change, std::isfinite(rate) ? rate : 0.0);
     return true;
   }
   if (summary_.iterations >= options_.max_iterations) {
     summary_.termination = Termination::kMaxIterations;
-    summary_.message = fmt::format("not converged: {} iterations reached with relative change {:.3g} >= tolerance {:.3g}",
-                                   summary_.iterations, change, options_.tolerance);
+    summary_.message = fmt::format(
+        "not converged: {} iterations reached with estimated relative error {:.3g} >= tolerance {:.3g} (last change {:.3g})",
+        summary_.iterations, estimated_error_, options_.tolerance, change);
     return true;
   }
   report_iteration(change);
@@ -120,13 +134,19 @@ void SolverContext::set_failed(std::string message) {
   summary_.message = std::move(message);
 }
 
-SolveSummary SolverContext::finish(const ElementHierarchy& hierarchy, std::size_t links, Solution* out) {
+SolveSummary SolverContext::finish(const ElementHierarchy& hierarchy, std::size_t links, Solution* out,
+                                   std::span<const std::array<Rgb, 9>> point_radiosity) {
   std::size_t leaves = 0;
   for (const ElementNode& n : hierarchy.nodes()) leaves += n.is_leaf() ? 1 : 0;
   summary_.elements = leaves;
   summary_.links = links;
   summary_.form_factor_evaluations = evaluator_->evaluations();
   summary_.visibility_queries = evaluator_->visibility_queries();
+  const Work counted = evaluator_->work();
+  summary_.work.point_factor_evaluations = counted.point_factor_evaluations;
+  summary_.work.form_factor_evaluations = counted.form_factor_evaluations;
+  summary_.work.shaft_queries = counted.shaft_queries;
+  summary_.work.segment_queries = counted.segment_queries;
   summary_.figures["culled_pairs"] = static_cast<double>(evaluator_->culled_pairs());
   if (visibility_) {
     summary_.figures["segment_queries"] =
@@ -134,7 +154,7 @@ SolveSummary SolverContext::finish(const ElementHierarchy& hierarchy, std::size_
   }
   if (out != nullptr) {
     auto p = phase("output");
-    *out = hierarchy.to_solution();
+    *out = hierarchy.to_solution(0.0, point_radiosity);
   }
   summary_.peak_memory_bytes = peak_memory_bytes();
   summary_.total_seconds = total_.seconds();
@@ -158,44 +178,6 @@ std::size_t peak_memory_bytes() {
     }
   }
   return 0;
-}
-
-namespace {
-
-// HSA 1991 PushPullRad: returns the node's new radiosity; tracks the leaves' largest change.
-Rgb push_pull_node(ElementHierarchy& h, NodeId id, const Rgb& down, int channels, double* change, double* largest) {
-  ElementNode& n = h.node(id);
-  const Rgb total = down + n.gathered;
-  if (n.is_leaf()) {
-    const Rgb b = n.emission + n.reflectance * total;
-    for (int c = 0; c < channels; ++c) {
-      *change = std::max(*change, std::abs(b[c] - n.radiosity[c]));
-      *largest = std::max(*largest, std::abs(b[c] - n.emission[c]));
-    }
-    n.radiosity = b;
-    return b;
-  }
-  const NodeId first = n.first_child;
-  Rgb sum = Rgb::Zero();
-  double area = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    const Rgb b = push_pull_node(h, first + k, total, channels, change, largest);
-    const double a = h.node(first + k).area;
-    sum += a * b;
-    area += a;
-  }
-  ElementNode& m = h.node(id);  // no reallocation happens here, but keep the access explicit
-  m.radiosity = sum / area;
-  return m.radiosity;
-}
-
-}  // namespace
-
-double push_pull(ElementHierarchy& hierarchy, int channels) {
-  double change = 0.0, largest = 0.0;
-  for (int p = 0; p < hierarchy.patch_count(); ++p)
-    push_pull_node(hierarchy, hierarchy.root(p), Rgb::Zero(), channels, &change, &largest);
-  return stopping_change(change, largest);
 }
 
 }  // namespace hrad

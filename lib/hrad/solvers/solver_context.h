@@ -14,6 +14,7 @@
 //   }
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -76,10 +77,14 @@ class SolverContext {
   void progress(std::string_view line) const;
 
   /// Appends `change` (largest relative change of this iteration) to the summary and returns true
-  /// when iterating should stop: converged (change < tolerance; termination kConverged), out of
-  /// iterations (kMaxIterations), or non-finite (kFailed). Sets message accordingly.
-  /// Long runs get a progress line every few seconds with the iterations still needed (extrapolated
-  /// from the change's geometric rate) and their time.
+  /// when iterating should stop: converged (termination kConverged), out of iterations
+  /// (kMaxIterations), or non-finite (kFailed); sets the message. Converged means the estimated
+  /// error of the current iterate is below the tolerance: for an iteration that contracts the
+  /// error by q per step, the remaining error is at most change q / (1 - q) (the tail of a
+  /// geometric series), with q the largest of the last three ratios of successive changes (one
+  /// ratio is noisy while the slowest mode takes over). The first iteration never converges
+  /// unless nothing changed; q >= 1 (not contracting) never converges. Long runs get a progress
+  /// line every few seconds with the iterations still needed (extrapolated from q) and their time.
   bool record_iteration(double change);
   /// For direct solves: termination kDirect with `message`.
   void set_direct(std::string message);
@@ -87,10 +92,14 @@ class SolverContext {
   void set_failed(std::string message);
 
   SolveSummary& summary() { return summary_; }
+  /// The estimated error of the current iterate (see record_iteration()); +infinity until known.
+  double estimated_error() const { return estimated_error_; }
 
   /// Finishes: counters from the evaluator, elements from `hierarchy`, links as given, phase
-  /// "output" for hierarchy.to_solution() into `out` (if not null), peak memory, total seconds.
-  SolveSummary finish(const ElementHierarchy& hierarchy, std::size_t links, Solution* out);
+  /// "output" for hierarchy.to_solution() into `out` (if not null; with the leaves' radiosity at
+  /// their points when given), peak memory, total seconds.
+  SolveSummary finish(const ElementHierarchy& hierarchy, std::size_t links, Solution* out,
+                      std::span<const std::array<Rgb, 9>> point_radiosity = {});
 
  private:
   const Scene& scene_;
@@ -100,6 +109,7 @@ class SolverContext {
   Stopwatch total_;
   double first_iteration_at_ = 0.0, next_iteration_line_at_ = 0.0;
   SolveSummary summary_;
+  double estimated_error_ = INFINITY;
   std::unique_ptr<Visibility> visibility_;
   std::unique_ptr<FormFactorEvaluator> evaluator_;
   struct ThreadLimit;
@@ -117,13 +127,5 @@ inline void copy_gray(Rgb& value) { value[1] = value[2] = value[0]; }
 
 /// The peak resident set of this process in bytes (Linux VmHWM), 0 if unknown.
 std::size_t peak_memory_bytes();
-
-// --- Push-pull, shared by the iterative solvers on the hierarchy ----------------------------
-
-/// Push-pull over every tree (HSA 1991, "PushPullRad"): gathered radiosity is pushed down to the
-/// leaves (adding parents' `gathered` to their children's), each leaf gets B = E + rho * (total
-/// gathered), and interior nodes get the area average of their children. Returns the largest
-/// relative change of the leaves' radiosity (over `channels`, as in SolveOptions::tolerance).
-double push_pull(ElementHierarchy& hierarchy, int channels);
 
 }  // namespace hrad

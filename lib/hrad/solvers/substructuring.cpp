@@ -8,6 +8,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "hrad/solvers/dense_links.h"
+#include "hrad/solvers/iteration.h"
+#include "hrad/solvers/push_pull.h"
 #include "hrad/solvers/solver_context.h"
 
 namespace hrad {
@@ -20,6 +23,8 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
   figures["max_area"] = max_area;
   const double patch_area = options.patch_area > 0.0 ? options.patch_area : kAutoPatchAreaFraction * scene.total_area();
   figures["patch_area"] = patch_area;
+  ctx.summary().used.max_area = max_area;
+  ctx.summary().used.patch_area = patch_area;
 
   // Shooting patches: the input polygons or their uniform subdivision; elements below them.
   std::vector<NodeId> patches;
@@ -43,18 +48,19 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
     }
   const int n = static_cast<int>(elements.size());
   figures["shooting_patches"] = big_n;
-  const std::size_t links = static_cast<std::size_t>(n) * static_cast<std::size_t>(big_n);
+  const std::size_t factors = static_cast<std::size_t>(n) * static_cast<std::size_t>(big_n);
   if (!ctx.effects().bounces) {
     ctx.set_direct("nothing reflects: B = E");
     return ctx.finish(h, 0, out);
   }
-  ctx.progress(fmt::format("substructure: {} elements receive from {} patches ({} form factors)", n, big_n, links));
+  ctx.progress(fmt::format("substructure: {} elements receive from {} patches ({} form factors)", n, big_n, factors));
 
   // F(i -> P) for element i and shooting patch P: row i of an n x N matrix; rows are independent.
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> f(n, big_n);
+  DenseLinks links(elements, patches);
   {
     auto phase = ctx.phase("form_factors");
     const FormFactorEvaluator& evaluator = ctx.evaluator();
+    Eigen::Map<DenseLinks::RowMatrix> f = links.matrix();
     tbb::parallel_for(tbb::blocked_range<int>(0, n, 4), [&](const tbb::blocked_range<int>& range) {
       for (int i = range.begin(); i < range.end(); ++i) {
         const ElementNode& a = h.node(elements[static_cast<std::size_t>(i)]);
@@ -67,48 +73,23 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
       }
     });
   }
+  ctx.summary().work.gather_terms = links.terms();
+  ctx.summary().work.link_bytes = links.bytes();
 
   const int channels = ctx.channels();
-  // Patch radiosity as an N x channels matrix, the area average of its elements.
-  Eigen::MatrixXd patch_b(big_n, channels);
-  auto average = [&](int p) {
-    Rgb sum = Rgb::Zero();
-    double area = 0.0;
-    for (NodeId e : elements_of[static_cast<std::size_t>(p)]) {
-      sum += h.node(e).area * h.node(e).radiosity;
-      area += h.node(e).area;
-    }
-    for (int c = 0; c < channels; ++c) patch_b(p, c) = sum[c] / area;
-  };
-  for (int p = 0; p < big_n; ++p) average(p);
   {
+    // Jacobi iterations: elements gather from the patches, whose radiosity push-pull pulls as the
+    // area mean of their elements.
     auto phase = ctx.phase("solve");
-    // Gauss-Seidel over patches: a patch's elements gather from the newest patch radiosities,
-    // then its own radiosity is updated before the next patch gathers.
-    int row = 0;
-    while (true) {
-      double change = 0.0, largest = 0.0;
-      row = 0;
-      for (int p = 0; p < big_n; ++p) {
-        for (NodeId id : elements_of[static_cast<std::size_t>(p)]) {
-          ElementNode& e = h.node(id);
-          for (int c = 0; c < channels; ++c) {
-            const double value = e.emission[c] + e.reflectance[c] * f.row(row).dot(patch_b.col(c));
-            change = std::max(change, std::abs(value - e.radiosity[c]));
-            largest = std::max(largest, std::abs(value - e.emission[c]));
-            e.radiosity[c] = value;
-          }
-          ++row;
-        }
-        average(p);
-      }
-      if (ctx.record_iteration(stopping_change(change, largest))) break;
-    }
+    const PushPull push_pull(scene, h, nullptr, channels);
+    NodeField field = push_pull.make_field();
+    const LinkOperator* ops[] = {&links};
+    iterate(ctx, push_pull, ops, field, radiosity_bound(scene));
+    push_pull.store(field, h, nullptr);
   }
   if (channels == 1)
-    for (NodeId id : elements) copy_gray(h.node(id).radiosity);
-  h.pull_radiosity();
-  return ctx.finish(h, links, out);
+    for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity);
+  return ctx.finish(h, factors, out);
 }
 
 }  // namespace hrad

@@ -1,0 +1,38 @@
+#include "hrad/solvers/iteration.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+namespace hrad {
+
+bool iterate(SolverContext& ctx, const PushPull& push_pull, std::span<const LinkOperator* const> operators,
+             NodeField& field, double bound) {
+  while (true) {
+    field.clear_gathered();
+    for (const LinkOperator* op : operators) op->gather(field);
+    const LeafChange c = push_pull.push_pull(field);
+    if (ctx.record_iteration(stopping_change(c.change, c.reflected))) break;
+    double largest = 0.0;
+    for (std::size_t p = 0; p < ctx.scene().patches.size(); ++p) largest = std::max(largest, field.radiosity[p].maxCoeff());
+    if (largest > 2.0 * bound) {
+      ctx.set_failed(fmt::format("diverging: the mean radiosity of a patch ({}) passed twice the bound E_max / "
+                                 "(1 - rho_max) = {} after {} iterations: the factors sum above 1 on some elements "
+                                 "(try a smaller --feps or more --visibility-samples)",
+                                 largest, bound, ctx.summary().iterations));
+      break;
+    }
+  }
+  return ctx.summary().termination == Termination::kConverged;
+}
+
+double radiosity_bound(const Scene& scene) {
+  double e = 0.0, rho = 0.0;
+  for (const Material& m : scene.materials) {
+    e = std::max(e, m.emission.maxCoeff());
+    rho = std::max(rho, m.reflectance.maxCoeff());
+  }
+  return e / (1.0 - rho);
+}
+
+}  // namespace hrad

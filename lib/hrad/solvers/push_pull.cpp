@@ -1,0 +1,269 @@
+#include "hrad/solvers/push_pull.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "hrad/formfactor/simpson_rule.h"
+
+namespace hrad {
+namespace {
+
+// Lagrange basis of the nodes 0, 1/2, 1 (node index 0, 1, 2).
+double lagrange(int node, double t) {
+  switch (node) {
+    case 0: return 2.0 * (t - 0.5) * (t - 1.0);
+    case 1: return -4.0 * t * (t - 1.0);
+    default: return 2.0 * t * (t - 0.5);
+  }
+}
+
+// Restriction of a field to child k: child point j's value is sum_i R[k][j][i] parent_value[i],
+// the parent's polynomial at the child's point.
+using Restriction = std::array<std::array<std::array<double, 9>, 9>, 4>;
+
+// Quads: biquadratic on the bilinear map, points in simpson_points() order at (u, v) = kQuadUv.
+// Child k of ElementHierarchy::split() has corners (parent corner k, midpoint of edge k, centre,
+// midpoint of edge k - 1); its own bilinear map is the parent's on that square of (u, v).
+constexpr double kQuadUv[9][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0}, {1, 0.5}, {0.5, 1}, {0, 0.5}, {0.5, 0.5}};
+
+Restriction quad_restriction() {
+  Restriction r{};
+  for (int k = 0; k < 4; ++k) {
+    const int corner[4] = {k, 4 + k, 8, 4 + (k + 3) % 4};
+    for (int j = 0; j < 9; ++j) {
+      const double a = kQuadUv[j][0], b = kQuadUv[j][1];
+      const double w[4] = {(1 - a) * (1 - b), a * (1 - b), a * b, (1 - a) * b};
+      double u = 0.0, v = 0.0;
+      for (int m = 0; m < 4; ++m) u += w[m] * kQuadUv[corner[m]][0], v += w[m] * kQuadUv[corner[m]][1];
+      for (int i = 0; i < 9; ++i)
+        r[k][j][i] = lagrange(static_cast<int>(2 * kQuadUv[i][0]), u) * lagrange(static_cast<int>(2 * kQuadUv[i][1]), v);
+    }
+  }
+  return r;
+}
+
+// Triangles: the quadratic through the values at the vertices (0, 1, 2) and edge midpoints (3: edge
+// 01, 4: edge 12, 5: edge 20), in barycentric coordinates; point 6 (the centroid) takes the
+// quadratic's value. Children of split(): {v0, m01, m20}, {v1, m12, m01}, {v2, m20, m12}, {m01, m12, m20}.
+Restriction triangle_restriction() {
+  using Bary = std::array<double, 3>;
+  const Bary point[7] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
+  const int corner[4][3] = {{0, 3, 5}, {1, 4, 3}, {2, 5, 4}, {3, 4, 5}};
+  auto basis = [](int i, const Bary& l) { return i < 3 ? l[i] * (2.0 * l[i] - 1.0) : 4.0 * l[i - 3] * l[(i - 2) % 3]; };
+  Restriction r{};
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 7; ++j) {
+      Bary at{0, 0, 0};
+      for (int m = 0; m < 3; ++m)
+        for (int d = 0; d < 3; ++d) at[d] += point[j][m] * point[corner[k][m]][d];
+      for (int i = 0; i < 6; ++i) r[k][j][i] = basis(i, at);
+    }
+  return r;
+}
+
+const Restriction& restriction(int vertex_count) {
+  static const Restriction quad = quad_restriction();
+  static const Restriction triangle = triangle_restriction();
+  return vertex_count == 4 ? quad : triangle;
+}
+
+}  // namespace
+
+PushPull::PushPull(const Scene& scene, const ElementHierarchy& hierarchy, const ClusterTree* tree, int channels)
+    : scene_(scene), h_(hierarchy), tree_(tree), channels_(channels), mean_weights_(hierarchy.size()),
+      basis_integrals_(hierarchy.size()) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, h_.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const SimpsonPoints s = simpson_points(h_.node(static_cast<NodeId>(i)).polygon());
+      double total = 0.0;
+      for (int k = 0; k < s.count; ++k) total += s.weight[k];
+      std::array<double, 9>& w = mean_weights_[i];
+      w.fill(0.0);
+      for (int k = 0; k < s.count; ++k) w[k] = total > 0.0 ? s.weight[k] / total : 0.0;
+      std::array<double, 9>& b = basis_integrals_[i];
+      b.fill(0.0);
+      if (s.count == 9) {
+        for (int k = 0; k < 9; ++k) b[k] = s.weight[k];
+      } else {
+        for (int k = 3; k < 6; ++k) b[k] = total / 3.0;
+      }
+    }
+  });
+}
+
+NodeField PushPull::make_field() const {
+  NodeField field;
+  field.resize(h_.size(), tree_ != nullptr ? tree_->size() : 0);
+  for (std::size_t i = 0; i < h_.size(); ++i) field.radiosity[i] = h_.node(static_cast<NodeId>(i)).radiosity;
+  pull(field);
+  return field;
+}
+
+Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& down, LeafChange* change) const {
+  const ElementNode& n = h_.node(id);
+  const std::size_t i = static_cast<std::size_t>(id);
+  PointValues total = field.irradiance[i];
+  for (int k = 0; k < 9; ++k) total[k] += down[k];
+  if (n.is_leaf()) {
+    Rgb mean = Rgb::Zero();
+    for (int k = 0; k < 9; ++k) mean += mean_weights_[i][k] * total[k];
+    const Rgb b = n.emission + n.reflectance * mean;
+    for (int k = 0; k < 9; ++k) field.point_radiosity[i][k] = n.emission + n.reflectance * total[k];
+    for (int c = 0; c < channels_; ++c) {
+      change->change = std::max(change->change, std::abs(b[c] - field.radiosity[i][c]));
+      change->reflected = std::max(change->reflected, std::abs(b[c] - n.emission[c]));
+    }
+    field.radiosity[i] = b;
+    leaf_moments(field, id);
+    return b;
+  }
+  const Restriction& r = restriction(n.vertex_count);
+  const int inputs = n.vertex_count == 4 ? 9 : 6, outputs = n.vertex_count == 4 ? 9 : 7;
+  Rgb sum = Rgb::Zero();
+  double area = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    PointValues child;
+    child.fill(Rgb::Zero());
+    for (int j = 0; j < outputs; ++j)
+      for (int m = 0; m < inputs; ++m) child[j] += r[k][j][m] * total[m];
+    const NodeId c = n.first_child + k;
+    const double a = h_.node(c).area;
+    sum += a * push_pull_element(field, c, child, change);
+    area += a;
+  }
+  field.radiosity[i] = sum / area;
+  pull_moments(field, id);
+  return field.radiosity[i];
+}
+
+void PushPull::leaf_moments(NodeField& field, NodeId id) const {
+  const std::size_t i = static_cast<std::size_t>(id);
+  for (int k = 0; k < 9; ++k) field.radiosity_moments[i][k] = basis_integrals_[i][k] * field.radiosity[i];
+}
+
+void PushPull::pull_moments(NodeField& field, NodeId id) const {
+  // The parent's basis function i restricted to child k is sum_j R[k][j][i] times the child's
+  // function j, so its moment is sum_k sum_j R[k][j][i] m_child_k[j].
+  const ElementNode& n = h_.node(id);
+  const Restriction& r = restriction(n.vertex_count);
+  const int functions = n.vertex_count == 4 ? 9 : 6;
+  PointValues& m = field.radiosity_moments[static_cast<std::size_t>(id)];
+  m.fill(Rgb::Zero());
+  for (int k = 0; k < 4; ++k) {
+    const PointValues& c = field.radiosity_moments[static_cast<std::size_t>(n.first_child + k)];
+    for (int j = 0; j < functions; ++j)
+      for (int f = 0; f < functions; ++f) m[f] += r[k][j][f] * c[j];
+  }
+}
+
+LeafChange PushPull::push_pull(NodeField& field) const {
+  // Clusters top-down (children have larger indices than their parent): what each has received,
+  // plus its ancestors'.
+  std::vector<AxisBins> cluster_down;
+  if (tree_ != nullptr) {
+    cluster_down = field.received;
+    for (std::size_t c = 0; c < tree_->size(); ++c) {
+      const int parent = tree_->cluster(static_cast<int>(c)).parent;
+      if (parent >= 0)
+        for (int a = 0; a < 6; ++a) cluster_down[c][a] += cluster_down[static_cast<std::size_t>(parent)][a];
+    }
+  }
+  std::vector<LeafChange> per_patch(static_cast<std::size_t>(h_.patch_count()));
+  tbb::parallel_for(tbb::blocked_range<int>(0, h_.patch_count(), 8), [&](const tbb::blocked_range<int>& range) {
+    for (int p = range.begin(); p != range.end(); ++p) {
+      // The patch's share of its clusters' bins: its irradiance from the cluster links.
+      Rgb from_clusters = Rgb::Zero();
+      PointValues down;
+      const int parent = tree_ != nullptr ? tree_->parent_of_patch(p) : -1;
+      if (parent >= 0) {
+        const Vec3& n = scene_.patches[static_cast<std::size_t>(p)].normal;
+        const AxisBins& bins = cluster_down[static_cast<std::size_t>(parent)];
+        for (int a = 0; a < 3; ++a) from_clusters += n[a] > 0.0 ? Rgb(n[a] * bins[a]) : Rgb(-n[a] * bins[3 + a]);
+      }
+      down.fill(from_clusters);
+      push_pull_element(field, h_.root(p), down, &per_patch[static_cast<std::size_t>(p)]);
+    }
+  });
+  pull_clusters(field);
+  LeafChange all;
+  for (const LeafChange& c : per_patch) {
+    all.change = std::max(all.change, c.change);
+    all.reflected = std::max(all.reflected, c.reflected);
+  }
+  return all;
+}
+
+Rgb PushPull::pull_element(NodeField& field, NodeId id) const {
+  const ElementNode& n = h_.node(id);
+  const std::size_t i = static_cast<std::size_t>(id);
+  if (n.is_leaf()) {
+    leaf_moments(field, id);
+    return field.radiosity[i];
+  }
+  Rgb sum = Rgb::Zero();
+  double area = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const double a = h_.node(n.first_child + k).area;
+    sum += a * pull_element(field, n.first_child + k);
+    area += a;
+  }
+  field.radiosity[i] = sum / area;
+  pull_moments(field, id);
+  return field.radiosity[i];
+}
+
+void PushPull::pull(NodeField& field) const {
+  tbb::parallel_for(tbb::blocked_range<int>(0, h_.patch_count(), 8), [&](const tbb::blocked_range<int>& range) {
+    for (int p = range.begin(); p != range.end(); ++p) pull_element(field, h_.root(p));
+  });
+  pull_clusters(field);
+}
+
+void PushPull::pull_clusters(NodeField& field) const {
+  if (tree_ == nullptr) return;
+  const std::size_t base = field.elements;
+  // Children have larger indices than their parent: a reverse sweep is bottom-up.
+  for (std::size_t c = tree_->size(); c-- > 0;) {
+    const Cluster& k = tree_->cluster(static_cast<int>(c));
+    Rgb sum = Rgb::Zero();
+    AxisBins weighted = zero_bins();
+    for (const NodeRef child : k.children) {
+      if (is_cluster(child)) {
+        const std::size_t ci = static_cast<std::size_t>(cluster_index(child));
+        const Cluster& kc = tree_->cluster(cluster_index(child));
+        sum += kc.area * field.radiosity[base + ci];
+        for (int a = 0; a < 3; ++a) {
+          weighted[a] += kc.axis_plus[a] * field.shown[ci][a];
+          weighted[3 + a] += kc.axis_minus[a] * field.shown[ci][3 + a];
+        }
+      } else {
+        const ElementNode& e = h_.node(child);
+        const Rgb& b = field.radiosity[static_cast<std::size_t>(child)];
+        sum += e.area * b;
+        const Vec3& n = scene_.patches[static_cast<std::size_t>(e.patch)].normal;
+        for (int a = 0; a < 3; ++a) {
+          weighted[a] += e.area * std::max(0.0, n[a]) * b;
+          weighted[3 + a] += e.area * std::max(0.0, -n[a]) * b;
+        }
+      }
+    }
+    field.radiosity[base + c] = sum / k.area;
+    for (int a = 0; a < 3; ++a) {
+      field.shown[c][a] = k.axis_plus[a] > 0.0 ? Rgb(weighted[a] / k.axis_plus[a]) : Rgb::Zero();
+      field.shown[c][3 + a] = k.axis_minus[a] > 0.0 ? Rgb(weighted[3 + a] / k.axis_minus[a]) : Rgb::Zero();
+    }
+  }
+}
+
+void PushPull::store(const NodeField& field, ElementHierarchy& h, std::vector<Rgb>* cluster_radiosity) const {
+  for (std::size_t i = 0; i < h.size(); ++i) h.node(static_cast<NodeId>(i)).radiosity = field.radiosity[i];
+  if (cluster_radiosity != nullptr) {
+    cluster_radiosity->assign(field.radiosity.begin() + static_cast<std::ptrdiff_t>(field.elements), field.radiosity.end());
+  }
+}
+
+}  // namespace hrad

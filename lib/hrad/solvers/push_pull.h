@@ -1,0 +1,63 @@
+// Push-pull (Hanrahan, Salzman & Aupperle 1991, "PushPullRad"), written once for every solver: the
+// irradiance gathered at a node is pushed down to the leaves below it (through the clusters into
+// the patches' quadtrees, where a cluster's received power goes to each patch by its projected area
+// per axis, Sillion 1995), each leaf gets B = E + rho H with H the mean of the irradiance field over
+// it, and the radiosity is pulled back up as the area mean (and, for clusters, the projected-area-
+// weighted mean shown towards each axis). The irradiance gathered at an element is a field given
+// by its values at the element's points (link_operator.h PointValues); it is pushed to a child by
+// evaluating the parent's polynomial at the child's points, which is exact. The radiosity's moments
+// against the same basis (link_operator.h NodeField::radiosity_moments) are pulled up by the
+// transpose of that restriction, so that what a link sends and what it delivers are adjoint
+// (Gortler, Schroeder, Cohen & Hanrahan 1993's two-scale relations, for this basis).
+#pragma once
+
+#include "hrad/core/scene.h"
+#include "hrad/mesh/element_hierarchy.h"
+#include "hrad/solvers/cluster_tree.h"
+#include "hrad/solvers/link_operator.h"
+
+namespace hrad {
+
+/// The leaves' largest change of radiosity in one push-pull and their largest reflected radiosity
+/// |B - E| (over the computed channels).
+struct LeafChange {
+  double change = 0.0;
+  double reflected = 0.0;
+};
+
+class PushPull {
+ public:
+  /// `tree` may be null (no clusters). Keeps references.
+  PushPull(const Scene& scene, const ElementHierarchy& hierarchy, const ClusterTree* tree, int channels);
+
+  /// A field sized for the hierarchy and the tree, with the leaves' radiosity from the hierarchy's
+  /// nodes (their emission before any solve) and everything above pulled from it.
+  NodeField make_field() const;
+  /// Pushes field.irradiance and field.received down, sets every leaf's radiosity to E + rho H and
+  /// pulls; returns the leaves' largest change. Parallel over patches, deterministic.
+  LeafChange push_pull(NodeField& field) const;
+  /// Sets interior elements' and clusters' radiosity (and clusters' shown bins) from the leaves'.
+  void pull(NodeField& field) const;
+  /// Copies the field's element radiosity into the hierarchy's nodes (for output and the B*F test)
+  /// and the clusters' mean radiosity into `cluster_radiosity` (when not null).
+  void store(const NodeField& field, ElementHierarchy& hierarchy, std::vector<Rgb>* cluster_radiosity) const;
+
+ private:
+  Rgb push_pull_element(NodeField& field, NodeId id, const PointValues& down, LeafChange* change) const;
+  Rgb pull_element(NodeField& field, NodeId id) const;
+  void pull_moments(NodeField& field, NodeId id) const;
+  void leaf_moments(NodeField& field, NodeId id) const;
+  void pull_clusters(NodeField& field) const;
+
+  const Scene& scene_;
+  const ElementHierarchy& h_;
+  const ClusterTree* tree_;
+  int channels_;
+  /// Per element: its simpson_points() weights over its area (the mean of a PointValues field).
+  std::vector<std::array<double, 9>> mean_weights_;
+  /// Per element: the integrals of its basis functions (the Simpson weights of a quad; for a
+  /// triangle's quadratic basis, 0 at the vertices and a third of the area at the midpoints).
+  std::vector<std::array<double, 9>> basis_integrals_;
+};
+
+}  // namespace hrad

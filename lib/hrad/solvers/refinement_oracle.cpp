@@ -1,0 +1,457 @@
+#include "hrad/solvers/refinement_oracle.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "hrad/formfactor/simpson_rule.h"
+#include "hrad/geometry/polygon.h"
+#include "hrad/visibility/sampling.h"
+
+namespace hrad {
+namespace {
+
+// One side of an element pair: the receiver's points, their unoccluded point factors to the
+// source, and their visible fractions of it.
+struct Side {
+  SimpsonPoints points;
+  std::array<double, 9> factor{};
+  std::array<double, 9> visible{};  ///< visible fraction of the source from the point
+  std::array<double, 9> doubt{};    ///< sampling error of `visible` (0 when classified exactly)
+  double unoccluded = 0.0;          ///< sum w f: the side's estimate of the exchange A_p F(p -> q)
+  double seen = 0.0;                ///< sum w f v
+  /// A lower bound of how far the unoccluded factor strays at the points from any linear field:
+  /// a linear field's value at an edge midpoint is its ends' mean (at the centre, the corners'), so
+  /// some point's residual is at least half of |F(m) - (F(a) + F(b)) / 2|.
+  double linear_residual_bound() const {
+    const int corners = points.count == 9 ? 4 : 3;
+    double b = 0.0, corner_mean = 0.0;
+    for (int i = 0; i < corners; ++i) {
+      b = std::max(b, std::abs(factor[corners + i] - 0.5 * (factor[i] + factor[(i + 1) % corners])));
+      corner_mean += factor[i] / corners;
+    }
+    b = std::max(b, std::abs(factor[2 * corners] - corner_mean));
+    return 0.5 * b;
+  }
+  /// The points' spread of the unoccluded factor: some point strays from any constant by half of it.
+  double spread() const {
+    double lo = INFINITY, hi = -INFINITY;
+    for (int i = 0; i < points.count; ++i) lo = std::min(lo, factor[i]), hi = std::max(hi, factor[i]);
+    return hi - lo;
+  }
+};
+
+void point_factors(const FormFactorEvaluator& ev, const ElementNode& r, const Vec3& n, const ElementNode& s, bool limits,
+                   Side* side) {
+  side->points = simpson_points(r.polygon());
+  side->unoccluded = 0.0;
+  const int centre = side->points.count - 1;
+  for (int i = 0; i < side->points.count; ++i) {
+    // Points on the element's boundary may lie in the source's plane (a shared edge, a contact):
+    // with `limits` their factor is the limit from inside the element, otherwise 0.
+    const Vec3& x = side->points.x[i];
+    side->factor[i] = i == centre || !limits ? ev.point_factor(x, n, s.polygon())
+                                  : ev.point_factor(x, n, Vec3(side->points.x[centre] - x), s.polygon());
+    side->visible[i] = 1.0;
+    side->doubt[i] = 0.0;
+    side->unoccluded += side->points.weight[i] * side->factor[i];
+  }
+  side->seen = side->unoccluded;
+}
+
+// Visible fractions of the source from each point of a partly visible pair's side, by rays to
+// stratified points of the source tested against the pair's occluders only (a segment between
+// points of the pair lies in its shaft). Rays, not each point's own shaft: against a short occluder
+// list a handful of rays costs a fraction of a shaft's hull and facet tests. A point on the
+// element's boundary casts its rays from kRayStart of the way towards the centre: on an edge
+// shared with a neighbouring patch the rounded point may lie a hair behind the neighbour's plane,
+// and the neighbour would then block every ray leaving it.
+constexpr double kRayStart = 1.0 / 16.0;
+
+void point_visibility(const FormFactorEvaluator& ev, const ElementNode& r, const Vec3& n, const ElementNode& s,
+                      const std::vector<int>* occluders, int rays, std::uint64_t seed, Side* side) {
+  side->seen = 0.0;
+  const int centre = side->points.count - 1;
+  for (int i = 0; i < side->points.count; ++i) {
+    if (!(side->factor[i] > 0.0)) {
+      side->visible[i] = 0.0;
+      continue;
+    }
+    const Vec3& c = side->points.x[centre];
+    const Vec3 start = i == centre ? c : Vec3(side->points.x[i] + kRayStart * (c - side->points.x[i]));
+    const KernelVisibility k = ev.visibility_from_point(start, n, r.patch, s.polygon(), s.patch, occluders, rays,
+                                                        detail::mix_seed(seed, static_cast<std::uint64_t>(i)));
+    side->visible[i] = k.weight > 0.0 ? k.visible / k.weight : 0.5;
+    side->doubt[i] = detail::fraction_error(k.visible_rays, k.rays);
+    side->seen += side->points.weight[i] * side->factor[i] * side->visible[i];
+  }
+}
+
+// The largest error of a link's factor if it were a linear field (bilinear on a quad) through the
+// side's corners moved to the link's mean `mean` (per unit radiosity of the source), or with
+// `linear` false the mean itself: how far the visible point factors stray from it, plus each
+// point's sampling doubt. A conservative measure of the error of the quadratic field the link
+// carries (shape_of()), which passes through the points.
+double linear_error(const Side& side, double mean, bool with_doubt = true, bool linear = true) {
+  const int corners = side.points.count == 9 ? 4 : 3;
+  const std::array<double, 4> w = corner_mean_weights(side.points);
+  std::array<double, 4> g{};
+  double g_mean = 0.0;
+  for (int i = 0; i < corners; ++i) {
+    g[i] = side.factor[i] * side.visible[i];
+    g_mean += w[i] * g[i];
+  }
+  for (int i = 0; i < corners; ++i) g[i] = linear ? g[i] + mean - g_mean : mean;
+  double centre = 0.0;
+  for (int i = 0; i < corners; ++i) centre += g[i] / corners;
+  double e = 0.0;
+  for (int i = 0; i < side.points.count; ++i) {
+    const double field = i < corners ? g[i] : i < 2 * corners ? 0.5 * (g[i - corners] + g[(i - corners + 1) % corners]) : centre;
+    e = std::max(e, std::abs(side.factor[i] * side.visible[i] - field) + (with_doubt ? side.factor[i] * side.doubt[i] : 0.0));
+  }
+  return e;
+}
+
+// How far the visibility at the side's points strays from the link's visible fraction, beyond twice
+// each point's sampling doubt, weighted by the point's factor relative to the side's mean factor:
+// the relative error of giving the whole side the link's fraction.
+double shadow_variation(const Side& side, double fraction) {
+  double mean = 0.0, area = 0.0;
+  for (int i = 0; i < side.points.count; ++i) {
+    mean += side.points.weight[i] * side.factor[i];
+    area += side.points.weight[i];
+  }
+  mean /= area;
+  if (!(mean > 0.0)) return 0.0;
+  double v = 0.0;
+  for (int i = 0; i < side.points.count; ++i)
+    v = std::max(v, side.factor[i] / mean * std::max(0.0, std::abs(side.visible[i] - fraction) - 2.0 * side.doubt[i]));
+  return v;
+}
+
+// The factor's shape over one side: the visible point factors, moved to the link's mean `mean` by
+// adding the difference of means (their quadrature is exact for the field), and pulled towards
+// `mean` as far as needed to keep every point >= 0. A triangle's centroid value is the quadratic's
+// through the other six (link_operator.h PointValues).
+void shape_of(const Side& side, double mean, std::array<float, 9>* shape) {
+  std::array<double, 9> g{};
+  for (int i = 0; i < side.points.count; ++i) g[i] = side.factor[i] * side.visible[i];
+  if (side.points.count == 7) {
+    // The quadratic at the centroid: -1/9 of each vertex value, 4/9 of each midpoint value.
+    g[6] = 0.0;
+    for (int i = 0; i < 3; ++i) g[6] += -g[i] / 9.0 + 4.0 * g[3 + i] / 9.0;
+  }
+  double area = 0.0, g_mean = 0.0;
+  for (int i = 0; i < side.points.count; ++i) {
+    area += side.points.weight[i];
+    g_mean += side.points.weight[i] * g[i];
+  }
+  g_mean = area > 0.0 ? g_mean / area : 0.0;
+  double lambda = 1.0;
+  for (int i = 0; i < side.points.count; ++i)
+    if (mean + (g[i] - g_mean) < 0.0) lambda = std::min(lambda, mean / (g_mean - g[i]));
+  shape->fill(0.0f);
+  for (int i = 0; i < side.points.count; ++i) (*shape)[i] = static_cast<float>(mean + lambda * (g[i] - g_mean));
+}
+
+// What a side sends through the link is the integral of its radiosity against its shape (the
+// factor from each of its points to the other side): over the radiosity's moments (link_operator.h
+// NodeField::radiosity_moments), the shape's values over the exchange, so that a uniform radiosity
+// B sends B. A triangle's quadratic has no basis function at the centroid.
+void source_weights_of(const Side& side, const std::array<float, 9>& shape, double exchange,
+                       std::array<float, 9>* weights) {
+  weights->fill(0.0f);
+  const int functions = side.points.count == 9 ? 9 : 6;
+  for (int i = 0; i < functions; ++i) (*weights)[i] = static_cast<float>(exchange > 0.0 ? shape[i] / exchange : 0.0);
+}
+
+}  // namespace
+
+ErrorBoundOracle::ErrorBoundOracle(const ElementHierarchy& hierarchy, const ClusterTree* tree,
+                                   const ClusterTransfer& geometry, const FormFactorEvaluator& evaluator,
+                                   const OracleTolerances& tolerances, std::vector<double> patch_weights,
+                                   int channels, const std::vector<Rgb>* cluster_radiosity)
+    : h_(hierarchy),
+      tree_(tree),
+      geometry_(geometry),
+      evaluator_(evaluator),
+      tol_(tolerances),
+      patch_weight_(std::move(patch_weights)),
+      channels_(channels),
+      cluster_radiosity_(cluster_radiosity),
+      // The pair's point-pair budget spread over the points that need rays (about a quarter of the
+      // 16-18 points of a partly visible pair see part of the source).
+      rays_per_point_(std::max(1, evaluator.visibility_samples() / 16)) {
+  if (tree_ != nullptr) {
+    // A cluster's weight is its brightest patch's.
+    cluster_weight_.assign(tree_->size(), 1.0);
+    for (std::size_t c = 0; c < tree_->size(); ++c) {
+      double w = 0.0;
+      for (const int patch : tree_->patches(static_cast<int>(c)))
+        w = std::max(w, patch_weight_[static_cast<std::size_t>(patch)]);
+      cluster_weight_[c] = w;
+    }
+  }
+}
+
+bool ErrorBoundOracle::can_split(NodeRef r) const {
+  if (is_cluster(r)) return true;
+  return h_.node(r).area * 0.25 >= tol_.aeps;
+}
+
+double ErrorBoundOracle::weight(NodeRef r) const {
+  if (is_cluster(r)) return cluster_weight_[static_cast<std::size_t>(cluster_index(r))];
+  return patch_weight_[static_cast<std::size_t>(h_.node(r).patch)];
+}
+
+double ErrorBoundOracle::brightest(NodeRef r) const {
+  const Rgb& b = is_cluster(r) ? (*cluster_radiosity_)[static_cast<std::size_t>(cluster_index(r))] : h_.node(r).radiosity;
+  return channels_ == 1 ? b[0] : b.maxCoeff();
+}
+
+std::pair<double, double> ErrorBoundOracle::weighted(NodeRef p, NodeRef q, double err_p, double err_q) const {
+  double wp = 0.0, wq = 0.0;
+  if (tol_.feps > 0.0) {
+    wp = weight(q) * err_p / tol_.feps;
+    wq = weight(p) * err_q / tol_.feps;
+  }
+  if (tol_.bfeps > 0.0) {
+    wp = std::max(wp, brightest(q) * err_p / tol_.bfeps);
+    wq = std::max(wq, brightest(p) * err_q / tol_.bfeps);
+  }
+  return {wp, wq};
+}
+
+Decision ErrorBoundOracle::split_choice(NodeRef p, NodeRef q, double e_p, double e_q) const {
+  // Split the side whose gather errs more as the test weighs it: only splitting p reduces p's
+  // error. Splitting q instead would make each piece's share small enough to pass while the
+  // pieces' errors add up on p. On a tie, the larger side (HSA 1991, Refine).
+  bool q_first = e_q > e_p;
+  if (e_q == e_p) {
+    const double ap = is_cluster(p) ? INFINITY : h_.node(p).area, aq = is_cluster(q) ? INFINITY : h_.node(q).area;
+    q_first = aq > ap;
+  }
+  if (q_first) {
+    if (can_split(q)) return Decision::kSplitQ;
+    if (can_split(p)) return Decision::kSplitP;
+  } else {
+    if (can_split(p)) return Decision::kSplitP;
+    if (can_split(q)) return Decision::kSplitQ;
+  }
+  return Decision::kLink;  // both at the smallest area: link anyway (HSA)
+}
+
+void ErrorBoundOracle::decide(Candidate& c) const {
+  c.decision = Decision::kDrop;
+  c.f_pq = c.f_qp = 0.0;
+  c.partial = false;
+  c.shadow_p = c.shadow_q = c.share_p = c.share_q = 0.0f;
+  if (c.split_p && can_split(c.p)) {
+    // Asked to split p (refine.h: the shadow errors below p add up past the tolerance).
+    c.decision = Decision::kSplitP;
+    return;
+  }
+  if (c.p == c.q) {
+    // A cluster's self-link; a planar element sees nothing of itself.
+    c.decision = is_cluster(c.p) ? Decision::kSelf : Decision::kDrop;
+    return;
+  }
+  if (is_cluster(c.p) || is_cluster(c.q)) {
+    decide_with_cluster(c);
+    return;
+  }
+  decide_elements(c);
+}
+
+void ErrorBoundOracle::decide_elements(Candidate& c) const {
+  const ElementNode& p = h_.node(c.p);
+  const ElementNode& q = h_.node(c.q);
+  if (p.patch == q.patch) return;  // one plane
+  if (evaluator_.faces_away(p.polygon(), q.polygon())) return;
+  const Scene& scene = evaluator_.scene();
+  const Vec3& np = scene.patches[static_cast<std::size_t>(p.patch)].normal;
+  const Vec3& nq = scene.patches[static_cast<std::size_t>(q.patch)].normal;
+  Side sp, sq;
+  // The fields the HSA push carries take the factor's limit on shared edges. The leaf push resolves
+  // each link per leaf with a Gauss rule that cannot follow the factor's steep rise towards a shared
+  // edge; with 0 there, the spread keeps such pairs refining down to leaves, whose links are exact.
+  point_factors(evaluator_, p, np, q, tol_.fields, &sp);
+  point_factors(evaluator_, q, nq, p, tol_.fields, &sq);
+  if (!(sp.unoccluded > 0.0) && !(sq.unoccluded > 0.0)) return;  // no point of either side sees the other
+  const double exchange = 0.5 * (sp.unoccluded + sq.unoccluded);  // A_p F(p -> q) = A_q F(q -> p)
+  const double disagreement = 0.5 * std::abs(sp.unoccluded - sq.unoccluded);
+  const bool splittable = can_split(c.p) || can_split(c.q);
+
+  // Visibility: classify with the parent's occluders; the children inherit what is found.
+  c.visible = c.known_visible || !evaluator_.effects().visibility;
+  std::vector<int> occluders;
+  if (!c.visible) {
+    const PairClass cls =
+        evaluator_.classify(p.polygon(), p.patch, q.polygon(), q.patch, c.occluders.get(), &occluders);
+    if (cls == PairClass::kFullyHidden || cls == PairClass::kFacingAway) return;
+    c.visible = cls == PairClass::kFullyVisible;
+    if (!c.visible) c.found_occluders = std::make_shared<const std::vector<int>>(std::move(occluders));
+  }
+  // A fully visible pair whose point factors alone stray from every linear field by more than the
+  // tolerance is split without more ado.
+  if (c.visible && splittable) {
+    const auto [e_p, e_q] = tol_.fields ? weighted(c.p, c.q, sp.linear_residual_bound(), sq.linear_residual_bound())
+                                        : weighted(c.p, c.q, 0.5 * sp.spread(), 0.5 * sq.spread());
+    if (std::max(e_p, e_q) > 1.0) {
+      c.decision = split_choice(c.p, c.q, e_p, e_q);
+      return;
+    }
+  }
+  double fraction = 1.0;
+  if (!c.visible) {
+    const std::uint64_t seed = evaluator_.pair_seed(p.polygon(), p.patch, q.polygon(), q.patch);
+    auto sample = [&](int rays, std::uint64_t stream) {
+      point_visibility(evaluator_, p, np, q, c.found_occluders.get(), rays, detail::mix_seed(seed, stream), &sp);
+      point_visibility(evaluator_, q, nq, p, c.found_occluders.get(), rays, detail::mix_seed(seed, stream + 1), &sq);
+      const double unoccluded = sp.unoccluded + sq.unoccluded;
+      return unoccluded > 0.0 ? (sp.seen + sq.seen) / unoccluded : 0.0;
+    };
+    if (splittable) {
+      // One ray per point first: where the points already disagree by twice the tolerance (a shadow
+      // boundary crosses the pair), split without sampling further. Sampling noise can only cause a
+      // split here, never a link.
+      fraction = sample(1, 1);
+      if (fraction > 0.0) {
+        const double f_pq = exchange * fraction / p.area, f_qp = exchange * fraction / q.area;
+        const auto [e_p, e_q] =
+            weighted(c.p, c.q, linear_error(sp, f_pq, false, tol_.fields), linear_error(sq, f_qp, false, tol_.fields));
+        if (std::max(e_p, e_q) > 2.0) {
+          c.decision = split_choice(c.p, c.q, e_p, e_q);
+          return;
+        }
+      }
+    }
+    sample(rays_per_point_, 3);
+    // The link's visible fraction from point pairs stratified over both elements: unbiased, where
+    // the points above sample where a shadow boundary lies but weigh the element's boundary as
+    // their quadrature does, which over- or underestimates a shadow that hugs it.
+    fraction = evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, c.found_occluders.get());
+    c.partial = fraction > 0.0 && fraction < 1.0;
+  }
+  // The link carries the factor's shape over each side (push_pull.h); its error is bounded by how
+  // far the visible point factors stray from a linear field.
+  const double f_pq = exchange * fraction / p.area, f_qp = exchange * fraction / q.area;
+  const double err_p = linear_error(sp, f_pq, true, tol_.fields) + disagreement / p.area;
+  const double err_q = linear_error(sq, f_qp, true, tol_.fields) + disagreement / q.area;
+  const auto [e_p, e_q] = weighted(c.p, c.q, err_p, err_q);
+  if (c.partial) {
+    // What giving the whole receiver the link's visible fraction errs, in units of the tolerance:
+    // a shadow errs the same way for every source its occluder hides, so these add up on the
+    // leaves below (refine.h sums them and refines where the sum passes the tolerance).
+    const auto [s_p, s_q] = weighted(c.p, c.q, f_pq * shadow_variation(sp, fraction), f_qp * shadow_variation(sq, fraction));
+    c.shadow_p = static_cast<float>(s_p);
+    c.shadow_q = static_cast<float>(s_q);
+  }
+  {
+    const auto [w_p, w_q] = weighted(c.p, c.q, f_pq, f_qp);
+    c.share_p = static_cast<float>(w_p);
+    c.share_q = static_cast<float>(w_q);
+  }
+  const bool passes = std::max(e_p, e_q) <= 1.0;
+  c.decision = passes ? Decision::kLink : split_choice(c.p, c.q, e_p, e_q);
+  if (c.decision != Decision::kLink) return;
+  if (!(fraction > 0.0)) {
+    // Every ray from both sides was blocked, and what may still pass unseen is within the
+    // tolerance (or neither side may split): nothing to link.
+    c.decision = Decision::kDrop;
+    return;
+  }
+  // The link's unoccluded exchange by the closed form: the points' quadratures can be off by a
+  // percent for large elements even where the two sides agree (a pair symmetric about a plane).
+  const double linked = p.area * evaluator_.analytic(p.polygon(), q.polygon()).from_to;
+  c.f_pq = linked * fraction / p.area;
+  c.f_qp = linked * fraction / q.area;
+  if (!(c.f_pq > 0.0) && !(c.f_qp > 0.0)) {
+    c.decision = Decision::kDrop;
+    return;
+  }
+  c.shaped = true;
+  shape_of(sp, c.f_pq, &c.shape_p);
+  shape_of(sq, c.f_qp, &c.shape_q);
+  source_weights_of(sp, c.shape_p, linked * fraction, &c.source_p);
+  source_weights_of(sq, c.shape_q, linked * fraction, &c.source_q);
+}
+
+void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
+  if (evaluator_.effects().cull_facing_away && geometry_.facing_away(c.p, c.q)) return;
+  const NodeShape sp = geometry_.shape(c.p), sq = geometry_.shape(c.q);
+  const double r = (sq.centre - sp.centre).norm(), reach = sp.radius + sq.radius;
+  if (r > kClusterSeparation * reach) {
+    // Far apart: the link gives every surface of the receiving node the same factor per unit of
+    // projected area, which errs by about the change of 1/r^2 across the two spheres, 2 (r_p + r_q)
+    // / r, of the factor (HSA 1991 sec. 4's error of a link, rather than the factor's size).
+    const double variation = 2.0 * reach / r;
+    const FormFactorEstimate far = geometry_.far_field(c.p, sp, c.q, sq);
+    if (far.facing_away) return;
+    const auto [b_p, b_q] = weighted(c.p, c.q, far.value * variation, far.reverse * variation);
+    if (std::max(b_p, b_q) <= 1.0) {
+      const NodeSurfaces surfaces_p(geometry_, c.p, sp.area), surfaces_q(geometry_, c.q, sq.area);
+      const std::uint64_t seed = detail::mix_seed((static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.p)) << 32) |
+                                                      static_cast<std::uint32_t>(c.q),
+                                                  7);
+      const FormFactorEstimate e = evaluator_.sampled(surfaces_p, surfaces_q, evaluator_.visibility_samples(), seed);
+      // A cluster link gives every surface of the receiver the same visible fraction: where an
+      // occluder hides the source from part of it, a surface there errs by up to the larger of the
+      // visible and the hidden fraction of the unoccluded factor (as a partly visible element pair
+      // would without its points' visibility), plus the estimate's standard error.
+      const double shadow = e.visibility > 0.0 && e.visibility < 1.0 ? std::max(e.visibility, 1.0 - e.visibility) : 0.0;
+      const double error_pq = far.value * variation + e.error + shadow * e.unoccluded;
+      const double error_qp = far.reverse * variation + (e.error + shadow * e.unoccluded) * sp.area / sq.area;
+      const auto [e_p, e_q] = weighted(c.p, c.q, error_pq, error_qp);
+      if (std::max(e_p, e_q) <= 1.0) {
+        if (e.value > 0.0 || e.reverse > 0.0) {
+          c.decision = Decision::kLink;
+          c.f_pq = e.value;
+          c.f_qp = e.reverse;
+          c.partial = true;
+        }
+        return;
+      }
+    }
+  }
+  // Split the node with the larger bounding sphere (Smits et al. 1994 split the larger side).
+  const bool p_can = can_split(c.p), q_can = can_split(c.q);
+  if (!is_cluster(c.p) && !is_cluster(c.q)) {
+    decide_elements(c);
+    return;
+  }
+  if (is_cluster(c.p) && (!is_cluster(c.q) || sp.radius >= sq.radius || !q_can)) c.decision = Decision::kSplitP;
+  else if (q_can) c.decision = Decision::kSplitQ;
+  else c.decision = p_can ? Decision::kSplitP : Decision::kLink;
+}
+
+std::vector<double> source_weights(const Scene& scene, int channels) {
+  Rgb emitted = Rgb::Zero(), reflectance = Rgb::Zero();
+  double area = 0.0;
+  for (const Patch& p : scene.patches) {
+    const Material& m = scene.material_of(p);
+    emitted += p.area * m.emission;
+    reflectance += p.area * m.reflectance;
+    area += p.area;
+  }
+  std::vector<double> weights(scene.patches.size(), 1.0);
+  if (area <= 0.0) return weights;
+  // Closed-room radiosity of the mean emission and reflectance (rhobar capped: a lossless scene
+  // with light in it has no finite mean, and the weights only need to rank sources).
+  const Rgb rho_bar = (reflectance / area).min(0.999);
+  const Rgb b_mean = (emitted / area) / (1.0 - rho_bar);
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    const Material& m = scene.material_of(scene.patches[i]);
+    double w = 0.0;
+    bool any = false;
+    for (int c = 0; c < channels; ++c) {
+      if (!(b_mean[c] > 0.0)) continue;
+      w = std::max(w, m.emission[c] / b_mean[c] + m.reflectance[c]);
+      any = true;
+    }
+    if (any) weights[i] = w;
+  }
+  return weights;
+}
+
+}  // namespace hrad

@@ -1,0 +1,151 @@
+// The refinement oracle of hierarchical radiosity: for a pair of nodes (elements or clusters), drop
+// it, link it, or split one side (Hanrahan, Salzman & Aupperle 1991, "Refine"; Smits, Arvo &
+// Greenberg 1994 for clusters). One interface for every rule; the plain and the clustered solves
+// ask the same oracle (a plain solve starts from the pairs of input patches, a clustered one from
+// the root cluster's self-link).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "hrad/mesh/element_hierarchy.h"
+#include "hrad/solvers/cluster_transfer.h"
+#include "hrad/solvers/cluster_tree.h"
+#include "hrad/solvers/form_factor_evaluator.h"
+
+namespace hrad {
+
+enum class Decision : std::uint8_t {
+  kDrop,    ///< no exchange (coplanar, facing away, hidden)
+  kLink,    ///< store the link with the factors in the candidate
+  kSplitP,  ///< replace by (child of p, q) for each child of p
+  kSplitQ,  ///< replace by (p, child of q)
+  kSelf,    ///< a cluster's self-link: its children's self-links and the links between them
+};
+
+/// A pair of nodes under examination. Links are two-way: p gathers from q with f_pq = F(p -> q)
+/// and q from p with f_qp = F(q -> p).
+struct Candidate {
+  NodeRef p = kNoNode;
+  NodeRef q = kNoNode;
+  /// From the parent pair: the shaft of a sub-pair lies in its parent's, so a fully visible parent
+  /// has fully visible children, and a partly visible parent's occluders are the only candidates
+  /// for its children (`occluders`; null = the whole scene).
+  bool known_visible = false;
+  std::shared_ptr<const std::vector<int>> occluders;
+  /// Split p whatever the pair's error (a re-refinement of shadowed receivers, refine.h).
+  bool split_p = false;
+
+  // Filled by RefinementOracle::decide().
+  Decision decision = Decision::kDrop;
+  /// What the pair's own classification found: children inherit it (when split).
+  bool visible = false;
+  std::shared_ptr<const std::vector<int>> found_occluders;
+  double f_pq = 0.0;
+  double f_qp = 0.0;
+  bool partial = false;  ///< linked with a visible fraction strictly between 0 and 1 (or sampled)
+  /// A partly visible link's error from giving each side the link's visible fraction, as the
+  /// weighted test counts it (1 = the tolerance): what its receiver gathers errs by this much where
+  /// the visibility differs from the fraction.
+  float shadow_p = 0.0f, shadow_q = 0.0f;
+  /// The link's factor as the weighted test counts it (f_pq w(q) / feps, ...): what each side
+  /// gathers through it, in the same units.
+  float share_p = 0.0f, share_q = 0.0f;
+  /// Between elements: the factor's shape over each side, F(x -> q) V(x, q) at its points
+  /// (link_operator.h PointValues) moved to the link's mean factor, which the HSA push carries down
+  /// to the leaves.
+  bool shaped = false;
+  std::array<float, 9> shape_p{}, shape_q{};
+  /// Between elements: what p sends through the link is sum_i source_p[i] m_i over the moments of
+  /// its radiosity (link_operator.h): shape_p over the exchange. The same for q.
+  std::array<float, 9> source_p{}, source_q{};
+};
+
+class RefinementOracle {
+ public:
+  virtual ~RefinementOracle() = default;
+  /// Examines `c` and sets its decision (and, for a link, its factors). Reads the hierarchy only:
+  /// safe to call for many candidates at once; deterministic.
+  virtual void decide(Candidate& c) const = 0;
+  /// Whether `r` can be split (an element above the smallest area, or a cluster).
+  virtual bool can_split(NodeRef r) const = 0;
+};
+
+/// Tolerances after the automatic defaults (hierarchical_tolerances()).
+struct OracleTolerances {
+  double feps = 0.0;   ///< 0 = no form-factor test
+  double bfeps = 0.0;  ///< 0 = no B*F test (radiosity units)
+  double aeps = 0.0;   ///< an element splits only while its children's area stays >= aeps
+  /// True: a link's error is measured from a linear field through its receiver's corners (the HSA
+  /// push carries each link's field, push_pull.h); false: from its constant mean factor (as HSA
+  /// 1991 pushes; the leaf push, which resolves each link per leaf, keeps links that fine).
+  bool fields = true;
+};
+
+/// Pairs of clusters (or a cluster and an element) farther apart than this many times the sum of
+/// their bounding radii are candidates for a far-field link.
+inline constexpr double kClusterSeparation = 3.0;
+
+/// The error-bounding oracle. An element pair is linked when the error its link makes, as a
+/// receiver gathers it, is within the tolerance on both sides: at the corner, edge-midpoint and
+/// centre points x_i of p (simpson_rule.h) the factor F(x_i -> q) times x_i's visible fraction of q
+/// strays from the link's field over p (a linear field through p's corners with the link's mean;
+/// or the mean itself, OracleTolerances::fields) by at most feps / w(q), w(q) the source's a-priori
+/// radiosity weight (hierarchical_tolerances() and source_weights()); the same for q. This is the
+/// error at receiver points that HSA 1991 sec. 4 asks to bound, in place of their F > feps test,
+/// and it sees both the falloff and shadows across the receiver (Lischinski, Smits & Greenberg
+/// 1994; Holzschuch & Sillion 1998). With bfeps, the source's current radiosity replaces its
+/// weight (HSA sec. 4.2). The link's unoccluded factor comes from the same points (the two sides'
+/// quadratures, reciprocal by construction) or, where they disagree (near field) or the link is
+/// forced at the smallest area, from the analytic kernel. Visibility: each pair is classified with
+/// its parent's occluder list; a partly visible pair's points are classified from their own cones,
+/// and rays sample only the points that see part of the source.
+///
+/// Pairs with a cluster: a pair farther apart than kClusterSeparation times its bounding radii is
+/// linked by a sampled factor (FormFactorEvaluator::sampled(), visibility by rays) when the
+/// factor's change across the two bounding spheres (2 (r_p + r_q) / r of it) plus its standard
+/// error passes the same weighted test; otherwise the larger side is split.
+class ErrorBoundOracle final : public RefinementOracle {
+ public:
+  /// `tree` may be null (no clusters). `cluster_radiosity` (per cluster) and the hierarchy's
+  /// radiosity are read by the B*F test. References are kept.
+  ErrorBoundOracle(const ElementHierarchy& hierarchy, const ClusterTree* tree, const ClusterTransfer& geometry,
+                   const FormFactorEvaluator& evaluator, const OracleTolerances& tolerances,
+                   std::vector<double> patch_weights, int channels, const std::vector<Rgb>* cluster_radiosity);
+
+  void decide(Candidate& c) const override;
+  bool can_split(NodeRef r) const override;
+
+ private:
+  void decide_elements(Candidate& c) const;
+  void decide_with_cluster(Candidate& c) const;
+  /// Each side's weighted error over its tolerance (pass when both are <= 1): err_p is the error of
+  /// what p gathers from q per unit radiosity of q.
+  std::pair<double, double> weighted(NodeRef p, NodeRef q, double err_p, double err_q) const;
+  double weight(NodeRef r) const;
+  double brightest(NodeRef r) const;
+  Decision split_choice(NodeRef p, NodeRef q, double e_p, double e_q) const;
+
+  const ElementHierarchy& h_;
+  const ClusterTree* tree_;
+  const ClusterTransfer& geometry_;
+  const FormFactorEvaluator& evaluator_;
+  OracleTolerances tol_;
+  std::vector<double> patch_weight_;
+  std::vector<double> cluster_weight_;
+  int channels_;
+  const std::vector<Rgb>* cluster_radiosity_;
+  int rays_per_point_;
+};
+
+/// The feps weights: a priori radiosity of each patch relative to the scene's, w = max over
+/// channels of (E / B_mean + rho), with B_mean = Ebar / (1 - rhobar) the closed-room radiosity of
+/// the area-mean emission and reflectance. What p gathers through a link is B_q times the factor,
+/// so B_q / B_mean turns a factor error into a relative radiosity error; B_q is estimated before
+/// solving as E_q + rho_q B_mean. In a closed room with uniform E and rho every weight is 1 (plain
+/// feps). All 1 when nothing emits. Only `channels` channels count (1 or 3).
+std::vector<double> source_weights(const Scene& scene, int channels);
+
+}  // namespace hrad
