@@ -1,0 +1,128 @@
+#include "hrad/viewfactors/pair_exchange.h"
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+
+#include "hrad/formfactor/point_to_polygon.h"
+#include "hrad/formfactor/polygon_quadrature.h"
+#include "hrad/formfactor/polygon_to_polygon.h"
+#include "hrad/visibility/sampling.h"
+#include "hrad/visibility/visible_region.h"
+
+namespace hrad {
+namespace {
+
+struct Fraction {
+  double value = 1.0, error = 0.0;
+  int rays = 0, regions = 0;
+};
+
+// Kernel-weighted visible fraction from `rays` point pairs: sqrt(rays) stratified points on p, as
+// many rays from each to stratified points of q. Its standard error is the ratio estimator's over
+// the points of p (each point's rays are one group), floored by the Wilson half-width of the ray
+// count, which is not zero when every ray agrees.
+Fraction sampled_fraction(const FormFactorEvaluator& ev, const Patch& a, int p, const Patch& b, int q,
+                          const std::vector<int>& occluders, int rays, std::uint64_t seed) {
+  const int kx = std::max(2, static_cast<int>(std::lround(std::sqrt(double(rays)))));
+  const int ky = std::max(1, (rays + kx - 1) / kx);
+  detail::Rng rng(detail::mix_seed(seed, 1));
+  std::vector<Vec2> ux;
+  detail::stratified_unit_square(kx, rng, &ux);
+  const detail::PolygonSampler sx(a.vertices);
+  std::vector<double> v(ux.size()), w(ux.size());
+  double sv = 0.0, sw = 0.0;
+  int visible_rays = 0, cast = 0;
+  for (std::size_t i = 0; i < ux.size(); ++i) {
+    const KernelVisibility k = ev.visibility_from_point(sx.point(ux[i].x(), ux[i].y()), a.normal, p, b.vertices, q,
+                                                        &occluders, ky, detail::mix_seed(seed, 2 + i));
+    v[i] = k.visible;
+    w[i] = k.weight;
+    sv += k.visible;
+    sw += k.weight;
+    visible_rays += k.visible_rays;
+    cast += k.rays;
+  }
+  Fraction f;
+  f.rays = cast;
+  if (!(sw > 0.0)) return f;  // no ray carries weight: the pair exchanges (almost) nothing
+  f.value = std::clamp(sv / sw, 0.0, 1.0);
+  const double n = static_cast<double>(ux.size()), mean_w = sw / n;
+  double s2 = 0.0;
+  for (std::size_t i = 0; i < ux.size(); ++i) s2 += (v[i] - f.value * w[i]) * (v[i] - f.value * w[i]);
+  const double ratio_se = std::sqrt(s2 / (n * (n - 1.0))) / mean_w;
+  f.error = std::max(ratio_se, detail::fraction_error(visible_rays, cast));
+  return f;
+}
+
+// Lambert's formula to the exact visible region: outer contours minus holes (the holes are
+// clockwise seen from the front, so they are reversed before subtracting).
+double factor_to_region(const Vec3& x, const Vec3& n, const VisibleRegion& region) {
+  double f = 0.0;
+  for (const PolygonWithHoles3& piece : region.pieces) {
+    f += point_to_polygon(x, n, piece.outer);
+    for (const std::vector<Vec3>& hole : piece.holes) {
+      std::vector<Vec3> ccw(hole.rbegin(), hole.rend());
+      f -= point_to_polygon(x, n, ccw);
+    }
+  }
+  return f;
+}
+
+Fraction region_fraction(const FormFactorEvaluator& ev, const Patch& a, int p, const Patch& b, int q, int order) {
+  std::vector<detail::WeightedPoint> points;
+  detail::polygon_quadrature(a.vertices, a.normal, order, points);
+  double visible = 0.0, total = 0.0;
+  Fraction f;
+  for (const detail::WeightedPoint& x : points) {
+    const double full = point_to_polygon(x.x, a.normal, b.vertices);
+    if (!(full > 0.0)) continue;
+    const VisibleRegion region = visible_region(ev.scene(), x.x, p, b.vertices, q);
+    ++f.regions;
+    total += x.weight * full;
+    visible += x.weight * std::min(full, factor_to_region(x.x, a.normal, region));
+  }
+  if (total > 0.0) f.value = std::clamp(visible / total, 0.0, 1.0);
+  return f;
+}
+
+}  // namespace
+
+PairExchange pair_exchange(const FormFactorEvaluator& ev, int p, int q, const PairExchangeOptions& options) {
+  PairExchange r;
+  const Scene& scene = ev.scene();
+  const Patch& a = scene.patches[static_cast<std::size_t>(p)];
+  const Patch& b = scene.patches[static_cast<std::size_t>(q)];
+  if (ev.faces_away(a.vertices, b.vertices)) return r;
+  thread_local std::vector<int> occluders;
+  occluders.clear();
+  r.pair_class = ev.classify(a.vertices, p, b.vertices, q, nullptr, &occluders);
+  if (r.pair_class == PairClass::kFacingAway) return r;
+  const PairFormFactor f = polygon_to_polygon(a.vertices, b.vertices);
+  r.evaluated = true;
+  // Both directions come from one evaluation; their mean is symmetric in p and q.
+  r.unoccluded = 0.5 * (a.area * f.from_to + b.area * f.to_from);
+  if (r.pair_class == PairClass::kFullyVisible) {
+    r.exchange = r.unoccluded;
+    return r;
+  }
+  if (r.pair_class == PairClass::kFullyHidden || !(r.unoccluded > 0.0)) return r;
+  Fraction fraction;
+  if (options.partial == PartialVisibility::kExactRegion) {
+    fraction = region_fraction(ev, a, p, b, q, options.region_order);
+  } else {
+    const std::uint64_t seed = ev.pair_seed(a.vertices, p, b.vertices, q);
+    for (int rays = std::max(4, options.min_rays);; rays *= 4) {
+      fraction = sampled_fraction(ev, a, p, b, q, occluders, std::min(rays, options.max_rays),
+                                  detail::mix_seed(seed, static_cast<std::uint64_t>(rays)));
+      r.rays += fraction.rays;
+      if (fraction.error <= options.fraction_error || rays >= options.max_rays) break;
+    }
+  }
+  r.regions = fraction.regions;
+  r.exchange = r.unoccluded * fraction.value;
+  r.error = r.unoccluded * fraction.error;
+  return r;
+}
+
+}  // namespace hrad

@@ -1,0 +1,304 @@
+#include "hrad/viewfactors/view_factor_matrix.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <utility>
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "hrad/core/error.h"
+#include "hrad/core/stopwatch.h"
+#include "hrad/mesh/element_hierarchy.h"
+#include "hrad/solvers/cluster_transfer.h"
+#include "hrad/solvers/cluster_tree.h"
+
+namespace hrad {
+namespace {
+
+// Upper-triangle candidates of each patch when a threshold prunes pairs, with the skipped bounds.
+struct Candidates {
+  std::vector<std::vector<int>> of_patch;  // q > p
+  std::vector<double> skipped_bound;       // per patch: sum of the bounds of its skipped blocks
+  std::uint64_t skipped_pairs = 0, cluster_pairs = 0;
+};
+
+// Dual traversal of the cluster tree (the pairs of a hierarchy, Appel 1985 and Barnes & Hut 1986
+// for n-body problems): a block of pairs whose factor bound is below the threshold both ways is
+// skipped whole; otherwise the larger node is opened, down to pairs of patches.
+class BoundedPairs {
+ public:
+  BoundedPairs(const Scene& scene, const std::vector<char>& eligible, double threshold)
+      : scene_(scene), eligible_(eligible), threshold_(threshold), hierarchy_(scene), tree_(scene),
+        transfer_(scene, hierarchy_, &tree_) {
+    out_.of_patch.resize(scene.patches.size());
+    out_.skipped_bound.assign(scene.patches.size(), 0.0);
+  }
+
+  Candidates run() && {
+    visit_self(tree_.root());
+    for (auto& list : out_.of_patch) std::sort(list.begin(), list.end());
+    return std::move(out_);
+  }
+
+ private:
+  std::span<const int> patches(NodeRef r) const {
+    if (is_cluster(r)) return tree_.patches(cluster_index(r));
+    return {&patch_ids_[static_cast<std::size_t>(r)], 1};
+  }
+
+  void visit_self(NodeRef r) {
+    if (!is_cluster(r)) return;
+    const Cluster& c = tree_.cluster(cluster_index(r));
+    visit_self(c.children[0]);
+    visit_self(c.children[1]);
+    visit(c.children[0], c.children[1]);
+  }
+
+  void visit(NodeRef a, NodeRef b) {
+    ++out_.cluster_pairs;
+    const NodeShape sa = transfer_.shape(a), sb = transfer_.shape(b);
+    const TransferBound bound = transfer_.bound(sa, sb);
+    if (bound.pq < threshold_ && bound.qp < threshold_) {
+      std::uint64_t ea = 0, eb = 0;
+      for (int p : patches(a))
+        if (eligible_[static_cast<std::size_t>(p)]) ++ea, out_.skipped_bound[static_cast<std::size_t>(p)] += bound.pq;
+      for (int q : patches(b))
+        if (eligible_[static_cast<std::size_t>(q)]) ++eb, out_.skipped_bound[static_cast<std::size_t>(q)] += bound.qp;
+      out_.skipped_pairs += ea * eb;
+      return;
+    }
+    if (!is_cluster(a) && !is_cluster(b)) {
+      if (eligible_[static_cast<std::size_t>(a)] && eligible_[static_cast<std::size_t>(b)])
+        out_.of_patch[static_cast<std::size_t>(std::min(a, b))].push_back(std::max(a, b));
+      return;
+    }
+    const bool open_a = is_cluster(a) && (!is_cluster(b) || sa.radius >= sb.radius);
+    const NodeRef split = open_a ? a : b, other = open_a ? b : a;
+    const Cluster& c = tree_.cluster(cluster_index(split));
+    visit(c.children[0], other);
+    visit(c.children[1], other);
+  }
+
+  const Scene& scene_;
+  const std::vector<char>& eligible_;
+  double threshold_;
+  ElementHierarchy hierarchy_;
+  ClusterTree tree_;
+  ClusterTransfer transfer_;
+  std::vector<int> patch_ids_ = [this] {
+    std::vector<int> ids(scene_.patches.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<int>(i);
+    return ids;
+  }();
+  Candidates out_;
+};
+
+struct RowResult {
+  std::vector<std::pair<int, PairExchange>> pairs;  // nonzero exchanges with q > p
+  ViewFactorCounters counters;
+};
+
+}  // namespace
+
+double ViewFactorMatrix::factor(int u, int v) const {
+  const auto begin = column.begin() + row_begin[static_cast<std::size_t>(u)];
+  const auto end = column.begin() + row_begin[static_cast<std::size_t>(u) + 1];
+  const auto it = std::lower_bound(begin, end, v);
+  return it != end && *it == v ? factor(u, it - column.begin()) : 0.0;
+}
+
+double ViewFactorMatrix::row_sum(int u) const {
+  double s = 0.0;
+  for (std::int64_t k = row_begin[static_cast<std::size_t>(u)]; k < row_begin[static_cast<std::size_t>(u) + 1]; ++k)
+    s += exchange[static_cast<std::size_t>(k)];
+  return s / area[static_cast<std::size_t>(u)];
+}
+
+std::size_t ViewFactorMatrix::bytes() const {
+  return row_begin.size() * sizeof(std::int64_t) + column.size() * sizeof(int) +
+         (exchange.size() + area.size() + sampling_error.size() + skipped_bound.size()) * sizeof(double);
+}
+
+double max_reciprocity_error(const ViewFactorMatrix& m) {
+  double worst = 0.0;
+  for (int u = 0; u < m.n; ++u)
+    for (std::int64_t k = m.row_begin[static_cast<std::size_t>(u)]; k < m.row_begin[static_cast<std::size_t>(u) + 1]; ++k) {
+      const int v = m.column[static_cast<std::size_t>(k)];
+      const double e = std::abs(m.area[static_cast<std::size_t>(u)] * m.factor(u, k) -
+                                m.area[static_cast<std::size_t>(v)] * m.factor(v, u));
+      worst = std::max(worst, e / m.area[static_cast<std::size_t>(u)]);
+    }
+  return worst;
+}
+
+ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& units, const ViewFactorOptions& options) {
+  Stopwatch clock;
+  const int n = units.size();
+  for (int u = 0; u < n; ++u)
+    if (!(units.area[static_cast<std::size_t>(u)] > 0.0))
+      throw Error(fmt::format("surface '{}' has no area", units.names[static_cast<std::size_t>(u)]));
+  const std::size_t np = scene.patches.size();
+  std::vector<int> unit(np);
+  std::vector<char> eligible(np);
+  std::uint64_t eligible_count = 0;
+  for (std::size_t p = 0; p < np; ++p) {
+    unit[p] = units.of_patch(scene, static_cast<int>(p));
+    eligible[p] = unit[p] >= 0;
+    eligible_count += eligible[p] ? 1 : 0;
+  }
+
+  VisibilityOptions vo;
+  vo.exact_shaft_contacts = options.exact_shaft_contacts;
+  const std::unique_ptr<Visibility> visibility = make_visibility(scene, vo);
+  Effects effects;
+  effects.visibility = visibility->scene_has_occlusion();
+  effects.cull_facing_away = true;
+  const FormFactorEvaluator evaluator(scene, effects, visibility.get(), 64, FormFactorKernel::kAnalytic);
+
+  ViewFactorMatrix m;
+  m.n = n;
+  m.area = units.area;
+  ViewFactorCounters& c = m.counters;
+  c.patch_pairs = eligible_count * (eligible_count - (eligible_count > 0 ? 1 : 0)) / 2;
+
+  Candidates candidates;
+  const bool pruned = options.threshold > 0.0 && np > 1;
+  if (pruned) {
+    candidates = BoundedPairs(scene, eligible, options.threshold).run();
+    c.skipped_pairs = candidates.skipped_pairs;
+    c.cluster_pairs = candidates.cluster_pairs;
+  }
+  std::vector<std::uint64_t> row_pairs(np, 0);
+  std::uint64_t total = 0;
+  {
+    std::uint64_t later = eligible_count;
+    for (std::size_t p = 0; p < np; ++p) {
+      if (eligible[p]) --later;
+      row_pairs[p] = !eligible[p] ? 0 : pruned ? candidates.of_patch[p].size() : later;
+      total += row_pairs[p];
+    }
+  }
+  ProgressReporter progress("view factors", total, "pairs", options.progress);
+
+  // Upper triangle of E per unit (v >= u), appended in patch order, then summed in that order:
+  // the same bits at any thread count.
+  std::vector<std::vector<std::pair<int, double>>> upper(static_cast<std::size_t>(n));
+  std::vector<double> variance(static_cast<std::size_t>(n), 0.0);
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  constexpr std::size_t kChunk = 128;
+  std::vector<RowResult> rows;
+  for (std::size_t begin = 0; begin < np; begin += kChunk) {
+    const std::size_t end = std::min(np, begin + kChunk);
+    rows.assign(end - begin, RowResult{});
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t p = r.begin(); p < r.end(); ++p) {
+          if (!eligible[p]) continue;
+          RowResult& row = rows[p - begin];
+          auto one = [&](int q) {
+            const PairExchange e = pair_exchange(evaluator, static_cast<int>(p), q, options.pair);
+            ViewFactorCounters& k = row.counters;
+            switch (e.pair_class) {
+              case PairClass::kFacingAway: ++k.facing_away; break;
+              case PairClass::kFullyVisible: ++k.fully_visible; break;
+              case PairClass::kFullyHidden: ++k.fully_hidden; break;
+              case PairClass::kPartial: ++k.partial; break;
+            }
+            k.closed_forms += e.evaluated ? 1 : 0;
+            k.rays += static_cast<std::uint64_t>(e.rays);
+            k.regions += static_cast<std::uint64_t>(e.regions);
+            if (e.exchange > 0.0 || e.error > 0.0) row.pairs.emplace_back(q, e);
+          };
+          if (pruned) {
+            for (int q : candidates.of_patch[p]) one(q);
+          } else {
+            for (std::size_t q = p + 1; q < np; ++q)
+              if (eligible[q]) one(static_cast<int>(q));
+          }
+          progress.advance(row_pairs[p]);
+        }
+      });
+    });
+    for (std::size_t p = begin; p < end; ++p) {
+      RowResult& row = rows[p - begin];
+      const int u = unit[p];
+      for (const auto& [q, e] : row.pairs) {
+        const int v = unit[static_cast<std::size_t>(q)];
+        if (u == v) {
+          // Both orders of the pair lie in one unit: A_u F_uu counts p -> q and q -> p.
+          upper[static_cast<std::size_t>(u)].emplace_back(u, 2.0 * e.exchange);
+          variance[static_cast<std::size_t>(u)] += 4.0 * e.error * e.error;
+        } else {
+          upper[static_cast<std::size_t>(std::min(u, v))].emplace_back(std::max(u, v), e.exchange);
+          variance[static_cast<std::size_t>(u)] += e.error * e.error;
+          variance[static_cast<std::size_t>(v)] += e.error * e.error;
+        }
+      }
+      c.facing_away += row.counters.facing_away;
+      c.fully_visible += row.counters.fully_visible;
+      c.fully_hidden += row.counters.fully_hidden;
+      c.partial += row.counters.partial;
+      c.closed_forms += row.counters.closed_forms;
+      c.rays += row.counters.rays;
+      c.regions += row.counters.regions;
+    }
+  }
+  progress.finish();
+  rows.clear();
+  rows.shrink_to_fit();
+
+  // Sum duplicates (units of several patches) in append order, then lay out both triangles.
+  std::vector<std::int64_t> count(static_cast<std::size_t>(n) + 1, 0);
+  for (int u = 0; u < n; ++u) {
+    auto& list = upper[static_cast<std::size_t>(u)];
+    std::stable_sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      if (out > 0 && list[out - 1].first == list[i].first) list[out - 1].second += list[i].second;
+      else list[out++] = list[i];
+    }
+    list.resize(out);
+    list.shrink_to_fit();
+    for (const auto& [v, e] : list) {
+      ++count[static_cast<std::size_t>(u)];
+      if (v != u) ++count[static_cast<std::size_t>(v)];
+    }
+  }
+  m.row_begin.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (int u = 0; u < n; ++u) m.row_begin[static_cast<std::size_t>(u) + 1] = m.row_begin[static_cast<std::size_t>(u)] + count[static_cast<std::size_t>(u)];
+  m.column.resize(static_cast<std::size_t>(m.row_begin.back()));
+  m.exchange.resize(m.column.size());
+  std::vector<std::int64_t> fill(m.row_begin.begin(), m.row_begin.end() - 1);
+  for (int u = 0; u < n; ++u) {
+    // Row u's lower entries (from rows w < u) were filled before; its upper ones follow in order.
+    for (const auto& [v, e] : upper[static_cast<std::size_t>(u)]) {
+      const auto k = static_cast<std::size_t>(fill[static_cast<std::size_t>(u)]++);
+      m.column[k] = v;
+      m.exchange[k] = e;
+      if (v != u) {
+        const auto kv = static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++);
+        m.column[kv] = u;
+        m.exchange[kv] = e;
+      }
+    }
+    std::vector<std::pair<int, double>>().swap(upper[static_cast<std::size_t>(u)]);
+  }
+
+  m.sampling_error.resize(static_cast<std::size_t>(n));
+  m.skipped_bound.assign(static_cast<std::size_t>(n), 0.0);
+  for (int u = 0; u < n; ++u)
+    m.sampling_error[static_cast<std::size_t>(u)] = std::sqrt(variance[static_cast<std::size_t>(u)]) / m.area[static_cast<std::size_t>(u)];
+  if (pruned)
+    for (std::size_t p = 0; p < np; ++p)
+      if (eligible[p])
+        m.skipped_bound[static_cast<std::size_t>(unit[p])] +=
+            scene.patches[p].area * candidates.skipped_bound[p] / m.area[static_cast<std::size_t>(unit[p])];
+  c.seconds = clock.seconds();
+  return m;
+}
+
+}  // namespace hrad

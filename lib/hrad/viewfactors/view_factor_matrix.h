@@ -1,0 +1,76 @@
+// The obstructed view-factor matrix between the units of a scene (input faces, groups, View3D
+// surfaces), with the guarantees thermal codes rely on:
+//   * 0 <= F_uv, and F_uv <= its unobstructed value (visible fractions lie in [0, 1]);
+//   * reciprocity: every pair of patches is computed once and gives E_uv = A_u F_uv = A_v F_vu,
+//     stored once; the matrix holds F_uv = E_uv / A_u, so |A_u F_uv - A_v F_vu| is rounding only;
+//   * closure where visibility is exact: rows of a closed enclosure whose pairs are all classified
+//     exactly (fully visible or hidden) sum to 1 to the closed form's accuracy; an open model's
+//     remainder 1 - sum_v F_uv is what the face sends to the sky;
+//   * no dependence on the unit of length and no epsilon offsets (pair_exchange.h).
+// With a threshold, the clustered hierarchy (cluster_tree.h) bounds whole blocks of pairs
+// (ClusterTransfer::bound(): F <= Aproj_max / (pi d_min^2)) and skips those whose factor cannot
+// reach the threshold in either direction; each row reports the sum of its skipped bounds, the most
+// factor it could have lost.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "hrad/core/progress.h"
+#include "hrad/core/scene.h"
+#include "hrad/viewfactors/pair_exchange.h"
+#include "hrad/viewfactors/surface_units.h"
+
+namespace hrad {
+
+struct ViewFactorOptions {
+  PairExchangeOptions pair;
+  /// Skip blocks of patch pairs whose factor bound is below this in both directions (0: none).
+  double threshold = 0.0;
+  /// Decide occluders that touch a pair's shaft exactly (VisibilityOptions::exact_shaft_contacts):
+  /// more pairs classified exactly, at a higher classification cost.
+  bool exact_shaft_contacts = true;
+  int threads = 0;  ///< 0: all cores; the result does not depend on it
+  ProgressSink progress;
+};
+
+struct ViewFactorCounters {
+  std::uint64_t patch_pairs = 0;       ///< unordered pairs of patches that both have a unit
+  std::uint64_t skipped_pairs = 0;     ///< of those, skipped by the cluster bound
+  std::uint64_t facing_away = 0;       ///< culled: exactly 0 without a kernel call
+  std::uint64_t fully_visible = 0, fully_hidden = 0, partial = 0;
+  std::uint64_t closed_forms = 0;      ///< polygon_to_polygon() calls
+  std::uint64_t rays = 0;              ///< segments cast for partly visible pairs
+  std::uint64_t regions = 0;           ///< exact visible regions computed
+  std::uint64_t cluster_pairs = 0;     ///< node pairs the bounded traversal visited
+  double seconds = 0.0;
+};
+
+/// A square sparse matrix in compressed rows: the exchange areas E_uv = A_u F_uv (E symmetric, each
+/// value stored in both rows, bit-identical) and the areas.
+struct ViewFactorMatrix {
+  int n = 0;
+  std::vector<double> area;
+  std::vector<std::int64_t> row_begin;  ///< n + 1 offsets into column / exchange
+  std::vector<int> column;              ///< sorted within each row
+  std::vector<double> exchange;         ///< E_uv
+  std::vector<double> sampling_error;   ///< standard error of each row sum from sampled visibility
+  std::vector<double> skipped_bound;    ///< bound of the factor mass in each row's skipped pairs
+  ViewFactorCounters counters;
+
+  double factor(int u, std::int64_t k) const { return exchange[static_cast<std::size_t>(k)] / area[static_cast<std::size_t>(u)]; }
+  /// F_uv (0 when not stored).
+  double factor(int u, int v) const;
+  double row_sum(int u) const;
+  std::size_t nonzeros() const { return column.size(); }
+  /// Memory held by the matrix.
+  std::size_t bytes() const;
+};
+
+/// Computes the matrix between `units` of `scene` (hrad::Error for a unit of zero area).
+ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& units, const ViewFactorOptions& options);
+
+/// Largest |A_u F_uv - A_v F_vu| / A_u over stored entries, from the factors as stored.
+double max_reciprocity_error(const ViewFactorMatrix& m);
+
+}  // namespace hrad

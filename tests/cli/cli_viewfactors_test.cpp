@@ -1,0 +1,100 @@
+// `hrad viewfactors` as a user runs it: every output format carries the same factors (checked
+// against Howell's closed forms for a unit cube), the report's invariants, and one-line errors.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "../formfactor/howell.h"
+#include "run_hrad.h"
+
+namespace hrad::test {
+namespace {
+
+const char* kCube =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+    "o floor\nf 1 2 3 4\no ceiling\nf 5 8 7 6\no w1\nf 1 5 6 2\no w2\nf 2 6 7 3\no w3\nf 3 7 8 4\no w4\nf 4 8 5 1\n";
+
+// Dense rows of numbers split by `separator`.
+std::vector<std::vector<double>> numbers(const std::string& text, char separator, std::size_t skip_lines = 0) {
+  std::vector<std::vector<double>> rows;
+  std::istringstream in(text);
+  std::size_t n = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (n++ < skip_lines) continue;
+    std::vector<double> row;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, separator);)
+      if (!cell.empty()) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The cube's matrix: 0 on the diagonal, C-11 (1,1,1) = 0.199825 opposite, C-14 = 0.200044 adjacent
+// (faces 0/1, 2/4 and 3/5 are opposite).
+double cube_factor(int i, int j) {
+  if (i == j) return 0.0;
+  const int opposite[6] = {1, 0, 4, 5, 2, 3};
+  return opposite[i] == j ? howell_c11(1, 1, 1) : howell_c14(1, 1, 1);
+}
+
+TEST(CliViewFactors, EveryFormatCarriesTheClosedForms) {
+  TempDir dir;
+  const std::string scene = dir.write("cube.obj", kCube);
+  const RunResult r = run_hrad("viewfactors " + scene + " --out " + dir.path("F.csv") + " --report " + dir.path("R.json") +
+                                   " --quiet",
+                               dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto dense = numbers(slurp(dir.path("F.csv")), ',');
+  ASSERT_EQ(dense.size(), 6u);
+  for (int i = 0; i < 6; ++i) {
+    ASSERT_EQ(dense[i].size(), 6u);
+    for (int j = 0; j < 6; ++j) EXPECT_NEAR(dense[i][j], cube_factor(i, j), 1e-10);
+  }
+  const nlohmann::json report = nlohmann::json::parse(slurp(dir.path("R.json")));
+  EXPECT_LE(report["max_reciprocity_error"].get<double>(), 1e-12);
+  EXPECT_LE(report["max_closure_error"].get<double>(), 1e-9);
+  EXPECT_EQ(report["per_surface"].size(), 6u);
+
+  ASSERT_EQ(run_hrad("viewfactors " + scene + " --out " + dir.path("F.mtx") + " --quiet", dir).exit_code, 0);
+  ASSERT_EQ(run_hrad("viewfactors " + scene + " --format triplets --out " + dir.path("T.csv") + " --quiet", dir).exit_code, 0);
+  ASSERT_EQ(run_hrad("viewfactors " + scene + " --out " + dir.path("V.txt") + " --quiet", dir).exit_code, 0);
+  const std::string mtx = slurp(dir.path("F.mtx"));
+  EXPECT_EQ(mtx.rfind("%%MatrixMarket matrix coordinate real general\n", 0), 0u);
+  const auto mm = numbers(mtx, ' ', 2);
+  ASSERT_EQ(mm[0].size(), 3u);
+  EXPECT_EQ(mm[0][2], 30.0);  // nonzeros: every off-diagonal pair
+  for (std::size_t k = 1; k < mm.size(); ++k) EXPECT_EQ(mm[k][2], dense[int(mm[k][0]) - 1][int(mm[k][1]) - 1]);
+  const auto triplets = numbers(slurp(dir.path("T.csv")), ',', 1);
+  ASSERT_EQ(triplets.size(), 30u);
+  for (const auto& t : triplets) EXPECT_EQ(t[2], dense[int(t[0])][int(t[1])]);
+  // View3D layout: header, areas, rows, emissivities (1 - the default reflectance 0.5).
+  const auto v3 = numbers(slurp(dir.path("V.txt")), ' ', 1);
+  ASSERT_EQ(v3.size(), 8u);
+  for (double a : v3[0]) EXPECT_EQ(a, 1.0);
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(v3[1 + i], dense[i]);
+  for (double e : v3[7]) EXPECT_EQ(e, 0.5);
+}
+
+TEST(CliViewFactors, BadOptionsAreOneLineErrorsWithNothingWritten) {
+  TempDir dir;
+  const std::string scene = dir.write("cube.obj", kCube);
+  const std::string out = dir.path("F.csv");
+  for (const std::string& bad : {std::string("--by zone"), std::string("--threshold 2"), std::string("--visibility-error 0"),
+                                 std::string("--format xml"), std::string("--max-rays 3")}) {
+    const RunResult r = run_hrad("viewfactors " + scene + " --out " + out + " " + bad, dir);
+    EXPECT_NE(r.exit_code, 0) << bad;
+    ASSERT_EQ(r.err_lines().size(), 1u) << r.err;
+    EXPECT_NE(r.err.find(bad.substr(0, bad.find(' '))), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << bad;
+  }
+  const RunResult ext = run_hrad("viewfactors " + scene + " --out " + dir.path("F.xlsx"), dir);
+  EXPECT_NE(ext.exit_code, 0);
+  EXPECT_NE(ext.err.find("--out"), std::string::npos) << ext.err;
+}
+
+}  // namespace
+}  // namespace hrad::test
