@@ -12,6 +12,9 @@
 //                                                     report gives each row's sampling error), or
 //                                                     with --exact, the exact visible region at
 //                                                     Gauss points (milliseconds per point)
+// SCENE may be View3D input (.vs3, lib/hrad/viewfactors/vs3_file.h): its S and M surfaces are the
+// rows (combined by their cmb field), O surfaces only obstruct, N surfaces are holes, and
+// emissivities come from its emit fields; encl=1 implies --enforce-closure.
 // Rows of a closed enclosure whose pairs are all classified exactly sum to 1 within ~1e-10; in an
 // open model 1 - (row sum) is the face's factor to the sky.
 //
@@ -32,6 +35,20 @@
 //   --enforce-closure  for closed models: the least-squares adjustment of A_i F_ij that keeps it
 //                      symmetric and makes every row sum to 1 (Lawson & Hanson; van Leersum 1989);
 //                      the report says how much it moved
+//   --write-vs3 M.vs3  also write the scene as View3D input (one S record per patch, the patches
+//                      of a face combined into its first; emissivity 1 - reflectance); --out may
+//                      then be left out
+//   --points P.csv     instead of the matrix, the factor from each probe point (CSV header
+//                      x,y,z,nx,ny,nz: position and the normal it faces) to every surface, exact
+//                      (Lambert's formula to the exact visible part of each patch): --out gets one
+//                      dense CSV line per point (mean radiant temperature, sensors)
+//   --boundary B.csv   radiant exchange: header surface,temperature,heat_flux, one row per surface
+//                      (0-based), either its temperature (K) or its net flux (W/m^2 leaving); gray
+//                      diffuse, emissivity 1 - reflectance (or the .vs3 emit). Solved on the matrix by
+//                      the net radiation method (Hottel & Sarofim); needs --heat
+//   --heat Q.csv       the exchange's result: surface,name,area,emissivity,temperature,heat_flux
+//                      (net W/m^2 leaving),heat_rate (W),radiosity
+//   --sky-temperature K    the sky's temperature for the rows' remainder (default 0 K)
 //   --threads N        worker threads (default: all cores); the result does not depend on it
 //   --quiet            no progress on stderr
 // Progress (pairs done, elapsed, time left) goes to stderr every 2 s on long runs; a summary to
@@ -39,6 +56,7 @@
 // work; outputs are written atomically and never replace an input.
 #include <sys/resource.h>
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -49,10 +67,15 @@
 #include "hrad/core/error.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/scene_reader.h"
+#include "hrad/io/points_csv.h"
+#include "hrad/viewfactors/boundary_csv.h"
 #include "hrad/viewfactors/closure.h"
+#include "hrad/viewfactors/point_factors.h"
+#include "hrad/viewfactors/radiant_exchange.h"
 #include "hrad/viewfactors/matrix_formats.h"
 #include "hrad/viewfactors/view_factor_matrix.h"
 #include "hrad/viewfactors/view_factor_report.h"
+#include "hrad/viewfactors/vs3_file.h"
 
 namespace hrad::cli {
 namespace {
@@ -68,14 +91,15 @@ double peak_memory_mb() {
 void add_viewfactors_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("viewfactors", "Obstructed view-factor matrix between faces or groups (thermal radiation)");
   struct Args {
-    std::string scene, out, format, by = "face", report;
-    double visibility_error = 0.01, threshold = 0.0;
+    std::string scene, out, format, by = "face", report, write_vs3, points, boundary, heat;
+    double visibility_error = 0.01, threshold = 0.0, sky_temperature = 0.0;
     int max_rays = 4096, threads = 0;
     bool exact = false, enforce_closure = false, quiet = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("SCENE", args->scene, "Scene file (.obj, .ply, .gltf, .glb)")->required();
-  cmd->add_option("--out", args->out, "Write the matrix here (.csv dense, .mtx, .txt View3D layout)")->required();
+  cmd->add_option("--out", args->out, "Write the matrix here (.csv dense, .mtx, .txt View3D layout)");
+  cmd->add_option("--write-vs3", args->write_vs3, "Also write the scene as View3D input (.vs3)");
   cmd->add_option("--format", args->format, "dense | triplets | mtx | view3d (default: by extension)");
   cmd->add_option("--by", args->by, "face (default) or group");
   cmd->add_option("--report", args->report, "Write the JSON report here");
@@ -84,6 +108,10 @@ void add_viewfactors_command(CLI::App& app) {
   cmd->add_flag("--exact", args->exact, "Partly visible pairs by the exact visible region");
   cmd->add_option("--threshold", args->threshold, "Skip pair blocks whose factor bound is below this (default 0)");
   cmd->add_flag("--enforce-closure", args->enforce_closure, "Adjust a closed model's rows to sum to 1, keeping reciprocity");
+  cmd->add_option("--points", args->points, "Probe points (CSV x,y,z,nx,ny,nz): point-to-surface factors to --out");
+  cmd->add_option("--boundary", args->boundary, "Radiant exchange: conditions (CSV surface,temperature,heat_flux)");
+  cmd->add_option("--heat", args->heat, "Radiant exchange: write net heat per surface here (CSV)");
+  cmd->add_option("--sky-temperature", args->sky_temperature, "Sky temperature, K (default 0)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
   cmd->callback([args] {
@@ -93,12 +121,27 @@ void add_viewfactors_command(CLI::App& app) {
     if (args->max_rays < 64 || args->max_rays > 1 << 24) throw Error(fmt::format("--max-rays: {} is not in [64, 16777216]", args->max_rays));
     if (!(args->threshold >= 0.0 && args->threshold < 1.0)) throw Error(fmt::format("--threshold: {} is not in [0, 1)", args->threshold));
     if (args->threads < 0) throw Error(fmt::format("--threads: {} is negative", args->threads));
-    const MatrixFormat format = matrix_format(args->format, args->out, "--out");
+    if (args->boundary.empty() != args->heat.empty()) throw Error(args->heat.empty() ? "--boundary needs --heat Q.csv" : "--heat needs --boundary B.csv");
+    if (!args->points.empty() && !args->boundary.empty()) throw Error("--points and --boundary exclude each other");
+    if (!(args->sky_temperature >= 0.0)) throw Error(fmt::format("--sky-temperature: {} K is negative", args->sky_temperature));
+    if (args->out.empty() && args->write_vs3.empty()) throw Error("give --out F (and/or --write-vs3 M.vs3)");
+    const MatrixFormat format = args->out.empty() ? MatrixFormat::kDense : matrix_format(args->format, args->out, "--out");
+    const bool vs3_input = std::filesystem::path(args->scene).extension() == ".vs3";
+    if (vs3_input && args->by != "face") throw Error("--by group: a .vs3 model's rows are its surfaces");
+    if (vs3_input && !args->write_vs3.empty()) throw Error("--write-vs3: the scene is already a .vs3 file");
 
     OutputFiles outputs;
-    outputs.declare("--out", args->out);
+    if (!args->out.empty()) outputs.declare("--out", args->out);
+    if (!args->write_vs3.empty()) outputs.declare("--write-vs3", args->write_vs3);
     if (!args->report.empty()) outputs.declare("--report", args->report);
-    outputs.check_inputs({{"the scene", args->scene}});
+    if (!args->heat.empty()) outputs.declare("--heat", args->heat);
+    std::vector<std::pair<std::string, std::string>> given = {{"the scene", args->scene}};
+    if (!args->points.empty()) given.emplace_back("--points", args->points);
+    if (!args->boundary.empty()) given.emplace_back("--boundary", args->boundary);
+    outputs.check_inputs(given);
+    if (!args->points.empty() && args->out.empty()) throw Error("--points needs --out F.csv");
+    std::vector<ProbePoint> points;
+    if (!args->points.empty()) points = read_points_csv(args->points);
 
     ViewFactorOptions options;
     options.pair.partial = args->exact ? PartialVisibility::kExactRegion : PartialVisibility::kSampled;
@@ -111,18 +154,62 @@ void add_viewfactors_command(CLI::App& app) {
     std::vector<std::string> warnings;
     ObjReadOptions read_options;
     read_options.progress = options.progress;
-    const Scene scene = read_scene(args->scene, &warnings, read_options);
+    Vs3Model model;
+    if (vs3_input) {
+      model = read_vs3(args->scene, &warnings);
+      if (model.enclosure) args->enforce_closure = true;
+    } else {
+      model.scene = read_scene(args->scene, &warnings, read_options);
+      model.units = args->by == "group" ? group_units(model.scene) : face_units(model.scene);
+    }
+    const Scene& scene = model.scene;
+    const SurfaceUnits& units = model.units;
     std::vector<std::pair<std::string, std::string>> inputs;
     for (const std::string& f : scene.files) inputs.emplace_back("an input of the scene", f);
     outputs.check_inputs(inputs);
     for (const std::string& w : warnings) std::cerr << w << "\n";
-    const SurfaceUnits units = args->by == "group" ? group_units(scene) : face_units(scene);
+    if (!args->write_vs3.empty())
+      write_file_atomically(args->write_vs3, [&](std::ostream& o) { write_vs3(o, scene, face_units(scene), scene.path); });
+    if (args->out.empty()) {
+      outputs.commit();
+      std::cout << fmt::format("{}: wrote {}\n", scene.path, args->write_vs3);
+      return;
+    }
+
+    if (!args->points.empty()) {
+      const PointFactors pf = point_view_factors(scene, units, points, args->threads, options.progress);
+      write_file_atomically(args->out, [&](std::ostream& o) {
+        std::string line;
+        for (int i = 0; i < pf.points; ++i) {
+          line.clear();
+          for (int u = 0; u < pf.units; ++u) fmt::format_to(std::back_inserter(line), "{}{:.17g}", u ? "," : "", pf.at(i, u));
+          o << line << "\n";
+        }
+      });
+      outputs.commit();
+      std::cout << fmt::format("{}: {} points x {} surfaces; point-patch pairs {} visible, {} hidden, {} partial (exact regions)\n",
+                               scene.path, pf.points, pf.units, pf.visible, pf.hidden, pf.partial);
+      return;
+    }
+    std::vector<SurfaceCondition> conditions;
+    if (!args->boundary.empty()) conditions = read_boundary_csv(args->boundary, units.size());
 
     ViewFactorMatrix m = compute_view_factors(scene, units, options);
     ClosureReport closure;
     if (args->enforce_closure) closure = enforce_closure(m);
     write_file_atomically(args->out, [&](std::ostream& o) { write_matrix(o, m, units, format); });
     const nlohmann::json report = view_factor_report(m, units, options, args->enforce_closure ? &closure : nullptr);
+    if (!conditions.empty()) {
+      const RadiantExchange x = solve_radiant_exchange(m, units.emissivity, conditions, args->sky_temperature);
+      write_file_atomically(args->heat, [&](std::ostream& o) {
+        o << "surface,name,area,emissivity,temperature,heat_flux,heat_rate,radiosity\n";
+        for (int u = 0; u < m.n; ++u) {
+          const auto i = static_cast<std::size_t>(u);
+          o << fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", u, units.names[i], m.area[i], units.emissivity[i],
+                           x.temperature[i], x.heat_flux[i], x.heat_flux[i] * m.area[i], x.radiosity[i]);
+        }
+      });
+    }
     if (!args->report.empty()) write_file_atomically(args->report, [&](std::ostream& o) { o << report.dump(2) << "\n"; });
     outputs.commit();
     std::cout << fmt::format(

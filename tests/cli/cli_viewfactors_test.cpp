@@ -98,3 +98,50 @@ TEST(CliViewFactors, BadOptionsAreOneLineErrorsWithNothingWritten) {
 
 }  // namespace
 }  // namespace hrad::test
+
+namespace hrad::test {
+namespace {
+
+// A .vs3 model in, the matrix out, and the same matrix (same bytes) from the equivalent OBJ
+// (written by --write-vs3 from it); radiant exchange on the cube at fixed temperatures closes its
+// energy balance (sum of heat rates 0 in a closed enclosure).
+TEST(CliViewFactors, Vs3AndObjGiveTheSameMatrixAndExchangeBalances) {
+  TempDir dir;
+  const std::string scene = dir.write("cube.obj", kCube);
+  ASSERT_EQ(run_hrad("viewfactors " + scene + " --write-vs3 " + dir.path("cube.vs3") + " --quiet", dir).exit_code, 0);
+  const RunResult a = run_hrad("viewfactors " + scene + " --out " + dir.path("obj.txt") + " --quiet", dir);
+  const RunResult b = run_hrad("viewfactors " + dir.path("cube.vs3") + " --out " + dir.path("vs3.txt") + " --quiet", dir);
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_EQ(slurp(dir.path("obj.txt")), slurp(dir.path("vs3.txt")));
+
+  const std::string bc = dir.write("bc.csv", "surface,temperature,heat_flux\n0,600,\n1,300,\n2,,0\n3,,0\n4,400,\n5,350,\n");
+  const RunResult x = run_hrad("viewfactors " + scene + " --out " + dir.path("F.csv") + " --boundary " + bc + " --heat " +
+                                   dir.path("Q.csv") + " --quiet",
+                               dir);
+  ASSERT_EQ(x.exit_code, 0) << x.err;
+  // surface,name,area,emissivity,temperature,heat_flux,heat_rate,radiosity
+  std::istringstream q(slurp(dir.path("Q.csv")));
+  std::string line;
+  std::getline(q, line);
+  EXPECT_EQ(line, "surface,name,area,emissivity,temperature,heat_flux,heat_rate,radiosity");
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(q, line)) rows.push_back(csv_cells(line));
+  ASSERT_EQ(rows.size(), 6u);
+  double total = 0.0, scale = 0.0;
+  for (const auto& r : rows) total += std::stod(r[6]), scale += std::abs(std::stod(r[6]));
+  EXPECT_LT(std::abs(total), 1e-9 * scale);
+  EXPECT_NEAR(std::stod(rows[2][5]), 0.0, 1e-9 * scale);  // reradiating: net flux 0
+  EXPECT_EQ(std::stod(rows[0][4]), 600.0);
+
+  const std::string bad = dir.write("bad.csv", "surface,temperature,heat_flux\n0,600,\n0,300,\n");
+  const RunResult e = run_hrad("viewfactors " + scene + " --out " + dir.path("G.csv") + " --boundary " + bad + " --heat " +
+                                   dir.path("R.csv"),
+                               dir);
+  EXPECT_NE(e.exit_code, 0);
+  EXPECT_NE(e.err.find("bad.csv:3: surface 0 was given on line 2"), std::string::npos) << e.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("G.csv")));
+}
+
+}  // namespace
+}  // namespace hrad::test

@@ -8,6 +8,7 @@
 #include "hrad/formfactor/polygon_quadrature.h"
 #include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/visibility/sampling.h"
+#include "hrad/viewfactors/point_factors.h"
 #include "hrad/visibility/visible_region.h"
 
 namespace hrad {
@@ -55,20 +56,6 @@ Fraction sampled_fraction(const FormFactorEvaluator& ev, const Patch& a, int p, 
   return f;
 }
 
-// Lambert's formula to the exact visible region: outer contours minus holes (the holes are
-// clockwise seen from the front, so they are reversed before subtracting).
-double factor_to_region(const Vec3& x, const Vec3& n, const VisibleRegion& region) {
-  double f = 0.0;
-  for (const PolygonWithHoles3& piece : region.pieces) {
-    f += point_to_polygon(x, n, piece.outer);
-    for (const std::vector<Vec3>& hole : piece.holes) {
-      std::vector<Vec3> ccw(hole.rbegin(), hole.rend());
-      f -= point_to_polygon(x, n, ccw);
-    }
-  }
-  return f;
-}
-
 Fraction region_fraction(const FormFactorEvaluator& ev, const Patch& a, int p, const Patch& b, int q, int order) {
   std::vector<detail::WeightedPoint> points;
   detail::polygon_quadrature(a.vertices, a.normal, order, points);
@@ -80,7 +67,7 @@ Fraction region_fraction(const FormFactorEvaluator& ev, const Patch& a, int p, c
     const VisibleRegion region = visible_region(ev.scene(), x.x, p, b.vertices, q);
     ++f.regions;
     total += x.weight * full;
-    visible += x.weight * std::min(full, factor_to_region(x.x, a.normal, region));
+    visible += x.weight * std::min(full, point_factor_to_region(x.x, a.normal, region));
   }
   if (total > 0.0) f.value = std::clamp(visible / total, 0.0, 1.0);
   return f;
