@@ -8,6 +8,9 @@
 //
 //   --polygons N   input polygons wanted (64 .. 10,000,000)
 //   --seed S       furniture placement seed (default 1)
+//   --kind K       office (default) or urban: blocks of buildings on a ground, open and not
+//                  watertight, like city meshes (lib/hrad/experiments/urban_generator.h), for view
+//                  factors at scale; about N facets
 //   --out FILE     the OBJ file to write
 #include <charconv>
 #include <iostream>
@@ -19,6 +22,7 @@
 #include "hrad/core/error.h"
 #include "hrad/core/memory.h"
 #include "hrad/experiments/scene_generator.h"
+#include "hrad/experiments/urban_generator.h"
 #include "hrad/io/atomic_file.h"
 
 namespace hrad::cli {
@@ -30,11 +34,12 @@ void add_scene_command(CLI::App& app) {
   struct Args {
     int polygons = 0;
     std::string seed = "1";
-    std::string out;
+    std::string out, kind = "office";
   };
   auto args = std::make_shared<Args>();
   gen->add_option("--polygons", args->polygons, "Input polygons wanted (64 .. 10000000)")->required();
   gen->add_option("--seed", args->seed, "Placement seed (default 1)");
+  gen->add_option("--kind", args->kind, "office (default: a closed room) or urban (buildings on a ground, open)");
   gen->add_option("--out", args->out, "OBJ file to write (the .mtl goes beside it)")->required();
   gen->callback([args] {
     // Parsed here, not by CLI11 (which accepted 99999999999999999999): a whole number that fits 64 bits.
@@ -58,7 +63,8 @@ void add_scene_command(CLI::App& app) {
     OutputFiles outputs;
     outputs.declare("--out", args->out);
     outputs.declare("the material library beside --out", generated_mtl_path(args->out));
-    const GeneratedScene scene = generate_scene(o);
+    if (args->kind != "office" && args->kind != "urban") throw Error(fmt::format("--kind: '{}' is not office or urban", args->kind));
+    const GeneratedScene scene = args->kind == "urban" ? generate_urban({args->polygons, seed}) : generate_scene(o);
     write_generated_scene(scene, args->out, [](std::string_view line) { std::cerr << "hrad " << line << "\n"; });
     outputs.commit();
     std::cout << fmt::format("{}: {} polygons, {} x {} cells, room {} x {} x {} m\n", args->out, scene.faces.size(),
