@@ -9,7 +9,7 @@ packages=(
   # geometry, meshes, linear algebra, fitting
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libopenmesh-dev libeigen3-dev libceres-dev libtbb-dev
   # command line, files, formats
-  libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libtinyobjloader-dev libtinygltf-dev libfccp-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libopenexr-dev libtinyobjloader-dev libtinygltf-dev libfccp-dev
   # ray casting for the Monte Carlo reference
   libembree-dev
   # tests and benchmarks

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "hrad/core/error.h"
+#include "hrad/io/exr_writer.h"
 #include "hrad/io/png_writer.h"
+#include "hrad/render/pixel_samples.h"
 #include "hrad/render/rasterizer.h"
 #include "../support/temp_dir.h"
 
@@ -224,6 +226,72 @@ TEST(Png, RoundTripAndErrors) {
   EXPECT_THROW(read_png(dir.path("missing.png")), Error);
   EXPECT_THROW(read_png(dir.write("bad.png", "\x89PNG\r\n\x1a\ntruncated")), Error);
   EXPECT_THROW(write_png(dir.path("empty.png"), Image()), Error);
+}
+
+// OpenEXR keeps what a PNG throws away: values above 1 and below 1/255, to float precision.
+TEST(Exr, RoundTripKeepsLinearValues) {
+  test::TempDir dir;
+  HdrImage image(5, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) image.at(x, y) = Rgb(17.25 * x, 1e-4 * y, 0.5 + x * y);
+  write_exr(dir.path("a.exr"), image);
+  EXPECT_EQ(dir.entries(), 1u);
+  const HdrImage back = read_exr(dir.path("a.exr"));
+  ASSERT_EQ(back.width, 5);
+  ASSERT_EQ(back.height, 3);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(back.pixels[i][c], static_cast<double>(static_cast<float>(image.pixels[i][c]))) << i;
+  EXPECT_THROW(read_exr(dir.path("missing.exr")), Error);
+  EXPECT_THROW(read_exr(dir.write("bad.exr", "v/1\x01truncated")), Error);
+  EXPECT_THROW(write_exr(dir.path("empty.exr"), HdrImage()), Error);
+}
+
+// Jittered pixel samples: inside their pixel, one in each stratum (a 2 x 2 grid for 4 passes, rows
+// and columns for 3), the same for the same pixel and seed, different for another seed.
+TEST(PixelSamples, StratifiedInsideThePixel) {
+  for (int passes : {3, 4}) {
+    std::vector<int> columns, rows;
+    for (int k = 0; k < passes; ++k) {
+      const Vec2 p = pixel_sample(7, 11, k, passes, 5);
+      ASSERT_GE(p.x(), 7.0);
+      ASSERT_LT(p.x(), 8.0);
+      ASSERT_GE(p.y(), 11.0);
+      ASSERT_LT(p.y(), 12.0);
+      const int m = passes == 4 ? 2 : 3;
+      columns.push_back(static_cast<int>((p.x() - 7) * m));
+      rows.push_back(static_cast<int>((p.y() - 11) * m));
+      EXPECT_EQ(p, pixel_sample(7, 11, k, passes, 5));
+      EXPECT_NE(p, pixel_sample(7, 11, k, passes, 6));
+    }
+    std::vector<int> cells;
+    for (int k = 0; k < passes; ++k) cells.push_back(passes == 4 ? columns[k] + 2 * rows[k] : columns[k]);
+    std::sort(cells.begin(), cells.end());
+    for (int k = 0; k < passes; ++k) EXPECT_EQ(cells[k], k);
+    if (passes == 3) {
+      std::sort(rows.begin(), rows.end());
+      EXPECT_EQ(rows, (std::vector<int>{0, 1, 2}));
+    }
+  }
+}
+
+// Antialiased Gouraud: with one sample a pixel is the old tone_map of its centre; with four, a
+// square's edge through the middle of a pixel column gives those pixels half the coverage.
+TEST(Render, SamplesPerPixelAntialiasEdges) {
+  RenderOptions o;
+  o.camera = test_camera();
+  o.exposure = 1.0;
+  Solution s = facing_square(0.5);
+  for (Vec3& v : s.vertices) v.x() *= 0.98;  // x = +-4.9: the middle of pixel columns 25 and 74
+  const Image one = render_solution(s, o);
+  EXPECT_EQ(one.at(25, 50), tone_map(Rgb::Constant(0.5), 1.0));  // centre 25.5 is on the edge: inside
+  o.samples_per_pixel = 4;
+  const RenderedImage four = render_solution_with_linear(s, o);
+  EXPECT_DOUBLE_EQ(four.linear.at(25, 50)[0], 0.25);
+  EXPECT_DOUBLE_EQ(four.linear.at(50, 50)[0], 0.5);
+  EXPECT_DOUBLE_EQ(four.linear.at(24, 50)[0], 0.0);
+  EXPECT_EQ(four.display.at(25, 50)[0], static_cast<std::uint8_t>(std::lround(255 * srgb_encode(0.25))));
+  EXPECT_EQ(four.display.at(50, 50), one.at(50, 50));
 }
 
 }  // namespace

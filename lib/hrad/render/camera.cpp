@@ -39,6 +39,14 @@ std::optional<Vec3> project(const Camera& camera, const Vec3& world) {
   return camera_to_pixel(camera, cam);
 }
 
+Vec3 pixel_direction(const Camera& camera, double px, double py) {
+  const Frame f = frame_of(camera);
+  const double tan_half = std::tan(0.5 * camera.vfov_deg * std::numbers::pi / 180.0);
+  const double aspect = static_cast<double>(camera.width) / camera.height;
+  const double ndc_x = 2.0 * px / camera.width - 1.0, ndc_y = 1.0 - 2.0 * py / camera.height;
+  return ndc_x * tan_half * aspect * f.right + ndc_y * tan_half * f.up + f.forward;
+}
+
 Camera cornell_box_camera(int width, int height) {
   Camera c;
   c.position = Vec3(278, 273, -800);

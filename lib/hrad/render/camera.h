@@ -28,6 +28,10 @@ Vec3 camera_to_pixel(const Camera& camera, const Vec3& cam);
 /// World point -> (pixel x, pixel y, depth); empty when the point is not in front of the camera.
 std::optional<Vec3> project(const Camera& camera, const Vec3& world);
 
+/// The world direction (not normalised; unit length along the viewing direction) from the camera
+/// through the image point (px, py) in pixel coordinates: the inverse of project().
+Vec3 pixel_direction(const Camera& camera, double px, double py);
+
 /// The Cornell box camera (Cornell University Program of Computer Graphics, "Cornell Box Data"):
 /// at (278, 273, -800) looking along +z with +y up, focal length 0.035 and a 0.025 x 0.025 film,
 /// so the vertical field of view is 2 atan(0.0125 / 0.035) = 39.3076 degrees.

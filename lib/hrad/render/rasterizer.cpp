@@ -3,15 +3,25 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hrad/render/pixel_samples.h"
+
 namespace hrad {
 
-Rasterizer::Rasterizer(const Camera& camera, double near_distance)
+Rasterizer::Rasterizer(const Camera& camera, double near_distance, int pass, int passes, std::uint64_t seed)
     : camera_(camera),
       near_(near_distance > 0.0 ? near_distance : 1e-6 * (camera.target - camera.position).norm()),
+      pass_(pass),
+      passes_(passes),
+      seed_(seed),
       depth_(static_cast<std::size_t>(camera.width) * camera.height, kFar),
-      value_(static_cast<std::size_t>(camera.width) * camera.height, Rgb::Zero()) {}
+      value_(static_cast<std::size_t>(camera.width) * camera.height, Rgb::Zero()),
+      id_(static_cast<std::size_t>(camera.width) * camera.height, -1) {}
 
-void Rasterizer::fill_polygon(std::span<const Vec3> points, std::span<const Rgb> values) {
+Vec2 Rasterizer::sample_position(int x, int y) const {
+  return pass_ < 0 ? Vec2(x + 0.5, y + 0.5) : pixel_sample(x, y, pass_, passes_, seed_);
+}
+
+void Rasterizer::fill_polygon(std::span<const Vec3> points, std::span<const Rgb> values, int id) {
   // Clip the polygon to the half-space depth >= near in camera space (Sutherland-Hodgman), which
   // keeps it convex, then fan-triangulate.
   std::vector<ClipVertex> in, out;
@@ -26,10 +36,10 @@ void Rasterizer::fill_polygon(std::span<const Vec3> points, std::span<const Rgb>
       out.push_back({p.cam + t * (q.cam - p.cam), p.value + t * (q.value - p.value)});
     }
   }
-  for (std::size_t i = 1; i + 1 < out.size(); ++i) fill_triangle(out[0], out[i], out[i + 1]);
+  for (std::size_t i = 1; i + 1 < out.size(); ++i) fill_triangle(out[0], out[i], out[i + 1], id);
 }
 
-void Rasterizer::fill_triangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c) {
+void Rasterizer::fill_triangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c, int id) {
   const Vec3 p[3] = {camera_to_pixel(camera_, a.cam), camera_to_pixel(camera_, b.cam), camera_to_pixel(camera_, c.cam)};
   const Rgb* v[3] = {&a.value, &b.value, &c.value};
   auto edge = [](const Vec3& s, const Vec3& t, double x, double y) {
@@ -45,7 +55,8 @@ void Rasterizer::fill_triangle(const ClipVertex& a, const ClipVertex& b, const C
   constexpr double tol = -1e-9;
   for (int y = y0; y <= y1; ++y) {
     for (int x = x0; x <= x1; ++x) {
-      const double px = x + 0.5, py = y + 0.5;
+      const Vec2 sample = sample_position(x, y);
+      const double px = sample.x(), py = sample.y();
       const double l0 = edge(p[1], p[2], px, py) / area;
       const double l1 = edge(p[2], p[0], px, py) / area;
       const double l2 = 1.0 - l0 - l1;
@@ -56,6 +67,7 @@ void Rasterizer::fill_triangle(const ClipVertex& a, const ClipVertex& b, const C
       if (!(z < depth_[i])) continue;
       depth_[i] = z;
       value_[i] = (l0 * w[0] * *v[0] + l1 * w[1] * *v[1] + l2 * w[2] * *v[2]) / winv;
+      id_[i] = id;
     }
   }
 }

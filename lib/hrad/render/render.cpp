@@ -14,11 +14,6 @@
 namespace hrad {
 namespace {
 
-bool faces_camera(const Solution& s, std::size_t f, const Camera& camera) {
-  const Vec3 n = face_vector_area(s, f);
-  return n.dot(camera.position - s.vertices[s.faces[f][0]]) > 0.0;
-}
-
 /// Fills every (front-facing) face; `value_of(f, k)` gives the value of face f's k-th vertex.
 template <class ValueOf>
 void fill_faces(Rasterizer& r, const Solution& s, const RenderOptions& o, ValueOf value_of) {
@@ -63,6 +58,48 @@ int glyph_row(char c, int row) {
 
 }  // namespace
 
+bool faces_camera(const Solution& s, std::size_t f, const Camera& camera) {
+  const Vec3 n = face_vector_area(s, f);
+  return n.dot(camera.position - s.vertices[s.faces[f][0]]) > 0.0;
+}
+
+PixelAverager::PixelAverager(int width, int height, int samples_per_pixel, double exposure, Rgb8 background)
+    : width_(width),
+      height_(height),
+      samples_(samples_per_pixel),
+      exposure_(exposure),
+      background_(background),
+      value_sum_(static_cast<std::size_t>(width) * height, Rgb::Zero()),
+      display_sum_(static_cast<std::size_t>(width) * height, Rgb::Zero()),
+      covered_(static_cast<std::size_t>(width) * height, 0) {}
+
+void PixelAverager::add(int x, int y, const Rgb& value) {
+  const std::size_t i = static_cast<std::size_t>(y) * width_ + x;
+  const Rgb v = value.isFinite().select(value, Rgb::Zero());
+  value_sum_[i] += v;
+  display_sum_[i] += (exposure_ * v).min(1.0).max(0.0);
+  ++covered_[i];
+}
+
+Image PixelAverager::display() const {
+  Image image(width_, height_);
+  Rgb background;
+  for (int c = 0; c < 3; ++c) background[c] = srgb_decode(background_[c] / 255.0);
+  for (std::size_t i = 0; i < display_sum_.size(); ++i) {
+    const int missing = std::max(0, samples_ - covered_[i]);
+    const Rgb mean = (display_sum_[i] + missing * background) / std::max(samples_, covered_[i]);
+    for (int c = 0; c < 3; ++c)
+      image.pixels[i][c] = static_cast<std::uint8_t>(std::lround(255.0 * srgb_encode(mean[c])));
+  }
+  return image;
+}
+
+HdrImage PixelAverager::linear() const {
+  HdrImage image(width_, height_);
+  for (std::size_t i = 0; i < value_sum_.size(); ++i) image.pixels[i] = value_sum_[i] / std::max(samples_, covered_[i]);
+  return image;
+}
+
 std::pair<Vec3, Vec3> solution_bounds(const Solution& solution) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 hi = -lo;
@@ -80,11 +117,22 @@ Camera default_camera(const Solution& solution, int width, int height) {
   return cornell ? cornell_box_camera(width, height) : fit_camera(lo, hi, width, height);
 }
 
-Image render_solution(const Solution& s, const RenderOptions& o) {
-  Rasterizer r(o.camera);
-  fill_faces(r, s, o, [&](std::size_t f, std::size_t k) { return s.vertex_radiosity[s.faces[f][k]]; });
-  return r.finish([&](const Rgb& b) { return tone_map(b, o.exposure); }, o.background);
+RenderedImage render_solution_with_linear(const Solution& s, const RenderOptions& o) {
+  const int passes = std::max(1, o.samples_per_pixel);
+  PixelAverager average(o.camera.width, o.camera.height, passes, o.exposure, o.background);
+  RenderOptions pass = o;
+  if (passes > 1) pass.progress = {};  // one line per pass would repeat itself
+  for (int k = 0; k < passes; ++k) {
+    Rasterizer r(o.camera, 0.0, passes > 1 ? k : -1, passes, o.seed);
+    fill_faces(r, s, pass, [&](std::size_t f, std::size_t i) { return s.vertex_radiosity[s.faces[f][i]]; });
+    for (int y = 0; y < o.camera.height; ++y)
+      for (int x = 0; x < o.camera.width; ++x)
+        if (r.covered(x, y)) average.add(x, y, r.value(x, y));
+  }
+  return {average.display(), average.linear()};
 }
+
+Image render_solution(const Solution& s, const RenderOptions& o) { return render_solution_with_linear(s, o).display; }
 
 Image render_wireframe(const Solution& s, const RenderOptions& o, const WireframeOptions& w) {
   Rasterizer r(o.camera);

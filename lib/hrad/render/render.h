@@ -2,6 +2,7 @@
 // optional links), and a false-colour map of a per-element value (e.g. relative error).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +19,9 @@ struct RenderOptions {
   double exposure = 1.0;            ///< see tone_map()
   bool cull_back_faces = true;      ///< skip polygons whose front (CCW) side faces away from the camera
   Rgb8 background{0, 0, 0};
+  /// Jittered samples per pixel (pixel_samples.h), averaged by PixelAverager; 1 samples the centres.
+  int samples_per_pixel = 1;
+  std::uint64_t seed = 1;           ///< of the jitter
   /// Progress lines for large meshes (core/progress.h: at most one every 2 s; none for quick renders).
   ProgressSink progress;
 };
@@ -29,8 +33,41 @@ std::pair<Vec3, Vec3> solution_bounds(const Solution& solution);
 /// [-1, 560]^3 and wider than 500 along each axis), else fit_camera() on its bounds.
 Camera default_camera(const Solution& solution, int width, int height);
 
-/// Gouraud shading of Solution::vertex_radiosity (perspective-correct), tone-mapped.
+/// Averages a few samples per pixel into a display image and a linear one. Display: each covered
+/// sample's clamp(exposure * value, 0, 1) and, for each sample that saw nothing, the background
+/// (sRGB-decoded), averaged in linear light and sRGB-encoded (so an edge against a bright light is
+/// antialiased as it looks; with one sample a pixel is tone_map() of its value or the background).
+/// Linear: the mean value over the pixel's samples, 0 where a sample saw nothing.
+class PixelAverager {
+ public:
+  PixelAverager(int width, int height, int samples_per_pixel, double exposure, Rgb8 background);
+  /// One covered sample of pixel (x, y); samples of a pixel must come in the same order every run
+  /// for the same bits (sums are not associative).
+  void add(int x, int y, const Rgb& value);
+  Image display() const;
+  HdrImage linear() const;
+
+ private:
+  int width_, height_, samples_;
+  double exposure_;
+  Rgb8 background_;
+  std::vector<Rgb> value_sum_, display_sum_;
+  std::vector<int> covered_;
+};
+
+/// Gouraud shading of Solution::vertex_radiosity (perspective-correct), tone-mapped, with
+/// options.samples_per_pixel jittered samples per pixel (PixelAverager).
 Image render_solution(const Solution& solution, const RenderOptions& options);
+
+struct RenderedImage {
+  Image display;
+  HdrImage linear;  ///< the interpolated radiosity averaged over each pixel's samples
+};
+/// render_solution() with its linear values (for HDR files).
+RenderedImage render_solution_with_linear(const Solution& solution, const RenderOptions& options);
+
+/// Whether face `f`'s front (counter-clockwise side) faces the camera's position.
+bool faces_camera(const Solution& solution, std::size_t f, const Camera& camera);
 
 struct WireframeOptions {
   Rgb8 edge_colour{20, 20, 20};

@@ -12,6 +12,11 @@ double srgb_encode(double linear) {
   return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
 }
 
+double srgb_decode(double encoded) {
+  const double v = std::clamp(encoded, 0.0, 1.0);
+  return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+}
+
 Rgb8 tone_map(const Rgb& radiosity, double exposure) {
   Rgb8 out{};
   for (int c = 0; c < 3; ++c) {

@@ -17,6 +17,9 @@ using Rgb8 = std::array<std::uint8_t, 3>;
 /// 1.055 v^(1/2.4) - 0.055 (IEC 61966-2-1). v is clamped to [0, 1] first.
 double srgb_encode(double linear);
 
+/// The inverse of srgb_encode on [0, 1]: v / 12.92 below 0.04045, else ((v + 0.055) / 1.055)^2.4.
+double srgb_decode(double encoded);
+
 /// Each channel: x = clamp(exposure * radiosity, 0, 1), then srgb_encode, then round(255 x).
 Rgb8 tone_map(const Rgb& radiosity, double exposure);
 
