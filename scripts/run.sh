@@ -2,8 +2,9 @@
 # The main job: installs what is missing, builds only the `hrad` command (Release; tests and
 # benchmarks build in scripts/test.sh), solves the bundled Cornell box with
 # hierarchical radiosity and writes out/cornell_box.ply (leaf mesh, vertex colours, per-element
-# radiosity), out/cornell_box.json (the solve report) and out/cornell_box.png (a rendering), then
-# prints a summary.
+# radiosity), out/cornell_box.json (the solve report), out/cornell_box.png (the elements'
+# radiosity, Gouraud-shaded) and out/cornell_box_gathered.png with out/cornell_box_gathered.exr
+# (the picture by final gather at every pixel, and its linear values), then prints a summary.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh --target hrad_cli
@@ -12,4 +13,7 @@ mkdir -p out
 build/bin/hrad info "$scene"
 build/bin/hrad solve "$scene" --method hierarchical --report out/cornell_box.json --out out/cornell_box.ply
 build/bin/hrad render out/cornell_box.ply --out out/cornell_box.png
-echo "wrote out/cornell_box.png, out/cornell_box.ply, out/cornell_box.json"
+build/bin/hrad render out/cornell_box.ply --scene "$scene" --final-gather --out out/cornell_box_gathered.png \
+  --exr out/cornell_box_gathered.exr
+echo "wrote out/cornell_box_gathered.png (final gather), out/cornell_box.png (Gouraud), out/cornell_box_gathered.exr," \
+  "out/cornell_box.ply, out/cornell_box.json"

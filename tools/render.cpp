@@ -1,9 +1,30 @@
 // hrad render SOLUTION.ply --out IMAGE.png [options]
+// hrad render SOLUTION.ply --scene SCENE --final-gather --out IMAGE.png [--exr IMAGE.exr] [options]
 //
-// Renders a solution written by `hrad solve` (PLY with per-vertex and per-element radiosity) to a
-// PNG with hrad's software rasterizer. The file is written atomically.
+// Renders a solution written by `hrad solve` (PLY with per-vertex and per-element radiosity) with
+// hrad's software rasterizer. Files are written atomically. By default each element's
+// vertex-interpolated radiosity is drawn (Gouraud). With --final-gather every pixel's samples
+// gather the radiosity where they meet the scene, B(x) = E + rho sum_j F(x -> j) V(x, j) B_j over
+// the solution's leaves j (lib/hrad/gather/leaf_gather.h: exact point-to-polygon factors, the
+// leaves of a distant patch grouped within --gather-tolerance, partly visible leaves sampled by
+// rays shared over the point), so the picture no longer shows the elements: shadows are resolved
+// at the pixels. The time of the image and the work of the gather are printed; progress with
+// the time left goes to stderr.
 //
-//   --out IMAGE.png        output image (required)
+//   --out IMAGE.png        output image (required); a name ending in .exr writes an OpenEXR file
+//                          of the linear values instead (the mean radiosity over each pixel's
+//                          samples, in the scene's exitance units; radiance is that over pi)
+//   --exr IMAGE.exr        also write the linear values as OpenEXR, beside the PNG
+//   --samples-per-pixel N  jittered samples per pixel, averaged (default 4; 1 samples the centres)
+//   --final-gather         gather at every sample instead of interpolating the elements; needs --scene
+//   --gather-tolerance T   Barnes-Hut tolerance of the gather, relative to the mean radiosity
+//                          (default 1e-2; 0 gathers every leaf on its own; larger is faster on
+//                          fine solutions: the leaves of distant patches are grouped)
+//   --visibility-samples K rays per gathered point shared by its partly visible leaves (default 32)
+//   --threads N            worker threads of the gather (default: all cores); the image is the
+//                          same at any count
+//   --seed S               seed of the pixels' jitter and the gather's rays (default 1)
+//   --quiet                no progress on stderr
 //   --camera px,py,pz,tx,ty,tz,ux,uy,uz,fov_deg
 //                          camera position, look-at point, up vector and vertical field of view in
 //                          degrees; default: the Cornell box camera for a Cornell-box-sized scene,
@@ -13,6 +34,7 @@
 //                          the area-weighted element luminance maps to 0.8)
 //   --wireframe            flat-shaded elements with their edges (the element mesh)
 //   --both-sides           draw back faces too (default: polygons facing away are skipped)
+//   --scene SCENE          the scene the solution was solved on (with --final-gather or --reference)
 //   --reference REF.ply --scene SCENE.obj
 //                          false-colour image of each element's relative L2 error against the
 //                          reference solution (analysis/error_metrics.h: samples per patch of the
@@ -23,19 +45,25 @@
 //   --include-emitters     measure emitting patches too (default: left out, drawn grey, since
 //                          their given emission dominates the norms)
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 
 #include "comma_numbers.h"
 #include "commands.h"
 #include "hrad/core/error.h"
 #include "hrad/core/memory.h"
 #include "hrad/analysis/error_metrics.h"
+#include "hrad/gather/gathered_image.h"
+#include "hrad/gather/leaf_gather.h"
 #include "hrad/io/atomic_file.h"
+#include "hrad/io/exr_writer.h"
 #include "hrad/io/scene_reader.h"
 #include "hrad/io/png_writer.h"
 #include "hrad/io/solution_ply.h"
@@ -68,6 +96,21 @@ Camera parse_camera(const std::string& text, int width, int height) {
   return c;
 }
 
+bool ends_with_exr(const std::string& path) {
+  if (path.size() < 4) return false;
+  std::string tail = path.substr(path.size() - 4);
+  std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
+  return tail == ".exr";
+}
+
+// The solution's patch ids must name patches of the scene.
+void check_patches(const Solution& solution, const std::string& solution_path, const Scene& scene,
+                   const std::string& scene_path) {
+  for (int p : solution.face_patch)
+    if (p < 0 || static_cast<std::size_t>(p) >= scene.patches.size())
+      throw Error(fmt::format("{}: patch id {} but {} has {} patches", solution_path, p, scene_path, scene.patches.size()));
+}
+
 std::pair<double, double> parse_range(const std::string& text) {
   const std::string usage = "--error-range: expected LO,HI with 0 <= LO < HI";
   const std::optional<std::vector<double>> v = comma_numbers(text);
@@ -86,12 +129,26 @@ void add_render_command(CLI::App& app) {
     int width = 512, height = 512;
     double exposure = 0.0;
     bool wireframe = false, both_sides = false;
-    std::string reference, scene, error_range;
-    bool log_scale = false, include_emitters = false;
+    std::string reference, scene, error_range, exr;
+    bool log_scale = false, include_emitters = false, final_gather = false, quiet = false;
+    int samples_per_pixel = 4, visibility_samples = 32, threads = 0;
+    double gather_tolerance = 1e-2;
+    std::uint64_t seed = 1;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("SOLUTION", args->solution, "Solution file (.ply) written by hrad solve")->required();
-  cmd->add_option("--out", args->out, "Output PNG image")->required();
+  cmd->add_option("--out", args->out, "Output image: PNG, or OpenEXR (linear values) for a name ending in .exr")
+      ->required();
+  cmd->add_option("--exr", args->exr, "Also write the linear values as OpenEXR");
+  cmd->add_option("--samples-per-pixel", args->samples_per_pixel, "Jittered samples per pixel (default 4)");
+  cmd->add_flag("--final-gather", args->final_gather, "Gather the radiosity at every sample (needs --scene)");
+  cmd->add_option("--gather-tolerance", args->gather_tolerance,
+                  "Barnes-Hut tolerance of the gather, relative to the mean radiosity (default 1e-2)");
+  cmd->add_option("--visibility-samples", args->visibility_samples,
+                  "Rays per gathered point for its partly visible leaves (default 32)");
+  cmd->add_option("--threads", args->threads, "Worker threads of the gather (default: all cores)");
+  cmd->add_option("--seed", args->seed, "Seed of the jitter and the gather's rays (default 1)");
+  cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
   cmd->add_option("--camera", args->camera,
                   "px,py,pz,tx,ty,tz,ux,uy,uz,fov_deg: position, look-at, up, vertical field of view (degrees)");
   cmd->add_option("--width", args->width, "Image width in pixels (default 512)");
@@ -100,7 +157,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_flag("--wireframe", args->wireframe, "Draw the element mesh over flat-shaded elements");
   cmd->add_flag("--both-sides", args->both_sides, "Also draw polygons whose front faces away from the camera");
   cmd->add_option("--reference", args->reference, "Reference solution (.ply): draw the relative error instead");
-  cmd->add_option("--scene", args->scene, "Scene (.obj) of both solutions; required with --reference");
+  cmd->add_option("--scene", args->scene, "Scene of the solution; required with --final-gather and --reference");
   cmd->add_option("--error-range", args->error_range, "LO,HI: colour-bar range of the error image");
   cmd->add_flag("--log", args->log_scale, "Logarithmic colour scale for the error image");
   cmd->add_flag("--include-emitters", args->include_emitters, "Measure the error on emitting patches too");
@@ -109,22 +166,46 @@ void add_render_command(CLI::App& app) {
       throw Error(fmt::format("--width: {} is not in [1, 16384]", args->width));
     if (args->height < 1 || args->height > 16384)
       throw Error(fmt::format("--height: {} is not in [1, 16384]", args->height));
-    // Per pixel: the RGB image, the depth buffer (double) and the per-pixel face ids and weights the
-    // error image keeps: 32 bytes is an upper bound. Refused up front rather than std::bad_alloc.
+    if (cmd->count("--exposure") && !(args->exposure > 0.0 && std::isfinite(args->exposure)))
+      throw Error(fmt::format("--exposure: {} is not a positive number", args->exposure));
+    if (args->samples_per_pixel < 1 || args->samples_per_pixel > 1024)
+      throw Error(fmt::format("--samples-per-pixel: {} is not in [1, 1024]", args->samples_per_pixel));
+    if (args->threads < 0) throw Error(fmt::format("--threads: {} is not >= 0 (0 = all cores)", args->threads));
+    // Per pixel: the rasterizer's depth, value and polygon id (36 bytes), the sums that average the
+    // samples, the linear image and the display (79 bytes); with --final-gather, per sample its
+    // point, pixel and gathered irradiance (88 bytes). Refused up front rather than std::bad_alloc.
     {
-      const double bytes = 32.0 * args->width * args->height, available = available_memory_bytes();
+      const double per_pixel = 115.0 + (args->final_gather ? 88.0 * args->samples_per_pixel : 0.0);
+      const double bytes = per_pixel * args->width * args->height, available = available_memory_bytes();
       if (available > 0.0 && bytes > 0.8 * available)
         throw Error(fmt::format("--width/--height: a {} x {} image needs about {} and this process may use {}: "
                                 "render smaller",
                                 args->width, args->height, format_bytes(bytes), format_bytes(available)));
     }
-    if (cmd->count("--exposure") && !(args->exposure > 0.0 && std::isfinite(args->exposure)))
-      throw Error(fmt::format("--exposure: {} is not a positive number", args->exposure));
+    LeafGatherOptions gather_options;
+    gather_options.tolerance = args->gather_tolerance;
+    gather_options.visibility_samples = args->visibility_samples;
+    gather_options.partial = PartialVisibility::shared;
+    gather_options.classify_points = false;
+    gather_options.seed = args->seed;
+    validate_leaf_gather_options(gather_options);
     // Every option is checked before any file is read.
-    if (!args->reference.empty() && args->scene.empty()) throw Error("--scene: required with --reference");
-    if (args->reference.empty() &&
-        (!args->scene.empty() || !args->error_range.empty() || args->log_scale || args->include_emitters))
-      throw Error("--reference: --scene, --error-range, --log and --include-emitters only apply to an error image");
+    const bool error_image = !args->reference.empty();
+    if (error_image && args->final_gather) throw Error("--final-gather: not with --reference (an error image)");
+    if (args->final_gather && args->wireframe) throw Error("--final-gather: not with --wireframe");
+    if ((error_image || args->final_gather) && args->scene.empty())
+      throw Error(fmt::format("--scene: required with {}", error_image ? "--reference" : "--final-gather"));
+    if (!error_image && !args->final_gather && !args->scene.empty())
+      throw Error("--scene: only with --final-gather or --reference");
+    if (!error_image && (!args->error_range.empty() || args->log_scale || args->include_emitters))
+      throw Error("--reference: --error-range, --log and --include-emitters only apply to an error image");
+    if (!args->final_gather)
+      for (const char* option : {"--gather-tolerance", "--visibility-samples", "--threads"})
+        if (cmd->count(option)) throw Error(fmt::format("{}: only with --final-gather", option));
+    if (!args->exr.empty() && (error_image || args->wireframe))
+      throw Error("--exr: the linear values of a Gouraud or gathered image only (not an error image or a wireframe)");
+    if (ends_with_exr(args->out) && (error_image || args->wireframe))
+      throw Error("--out: an OpenEXR image holds the linear values of a Gouraud or gathered image only");
     std::optional<Camera> camera;
     if (!args->camera.empty()) camera = parse_camera(args->camera, args->width, args->height);
     std::optional<std::pair<double, double>> error_range;
@@ -134,29 +215,46 @@ void add_render_command(CLI::App& app) {
 
     OutputFiles outputs;
     outputs.declare("--out", args->out);
+    if (!args->exr.empty()) outputs.declare("--exr", args->exr);
     outputs.check_inputs({{"the solution", args->solution}, {"--reference", args->reference}, {"--scene", args->scene}});
     const Solution solution = read_solution_ply(args->solution);
     RenderOptions options;
     options.camera = camera ? *camera : default_camera(solution, args->width, args->height);
     options.exposure = cmd->count("--exposure") ? args->exposure : auto_exposure(solution);
     options.cull_back_faces = !args->both_sides;
-    options.progress = [](std::string_view line) { std::cerr << "hrad render: " << line << "\n"; };
-    Image image;
-    if (!args->reference.empty()) {
-      const Scene scene = read_scene(args->scene);
+    options.samples_per_pixel = args->samples_per_pixel;
+    options.seed = args->seed;
+    if (!args->quiet) options.progress = [](std::string_view line) { std::cerr << "hrad render: " << line << "\n"; };
+    std::optional<Scene> scene;
+    if (!args->scene.empty()) {
+      scene = read_scene(args->scene);
       std::vector<std::pair<std::string, std::string>> inputs;
-      for (const std::string& f : scene.files) inputs.emplace_back("an input of --scene", f);
+      for (const std::string& f : scene->files) inputs.emplace_back("an input of --scene", f);
       outputs.check_inputs(inputs);
+      check_patches(solution, args->solution, *scene, args->scene);
+    }
+    Image image;
+    std::optional<HdrImage> linear;
+    if (args->final_gather) {
+      std::unique_ptr<tbb::global_control> limit;
+      if (args->threads > 0)
+        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, args->threads);
+      const LeafGather gather(*scene, solution, gather_options);
+      GatheredImage gathered = render_gathered(solution, gather, options);
+      image = std::move(gathered.display);
+      linear = std::move(gathered.radiosity);
+      const GatherWork& w = gathered.work;
+      const double per_point = w.points ? 1.0 / static_cast<double>(w.points) : 0.0;
+      std::cout << fmt::format(
+          "final gather: {}x{} pixels, {} samples per pixel, {} points in {:.2f} s ({:.2f} s gathering, {:.3g} "
+          "points/s); per point: {:.1f} point factors, {:.1f} leaves covered, {:.1f} rays\n",
+          image.width, image.height, args->samples_per_pixel, gathered.points, gathered.seconds,
+          gathered.gather_seconds, gathered.gather_seconds > 0.0 ? gathered.points / gathered.gather_seconds : 0.0,
+          per_point * w.node_visits, per_point * w.leaves_covered, per_point * w.rays);
+    } else if (error_image) {
       const Solution reference = read_solution_ply(args->reference);
-      for (int p : solution.face_patch)
-        if (static_cast<std::size_t>(p) >= scene.patches.size())
-          throw Error(fmt::format("{}: patch id {} but {} has {} patches", args->solution, p, args->scene,
-                                  scene.patches.size()));
-      for (int p : reference.face_patch)
-        if (static_cast<std::size_t>(p) >= scene.patches.size())
-          throw Error(fmt::format("{}: patch id {} but {} has {} patches", args->reference, p, args->scene,
-                                  scene.patches.size()));
-      const ErrorMetrics metrics = compare_solutions(scene, solution, reference, 256,
+      check_patches(reference, args->reference, *scene, args->scene);
+      const ErrorMetrics metrics = compare_solutions(*scene, solution, reference, 256,
                                                      args->include_emitters ? Emitters::include : Emitters::exclude);
       FalseColourOptions colours;
       colours.log_scale = args->log_scale;
@@ -190,10 +288,18 @@ void add_render_command(CLI::App& app) {
           "relative L2 error {:.6g}, relative Linf error {:.6g} ({} samples{}); colour range {:.3g} to {:.3g}\n",
           metrics.relative_l2, metrics.relative_linf, metrics.samples,
           args->include_emitters ? "" : ", emitters left out", colours.lo, colours.hi);
+    } else if (args->wireframe) {
+      image = render_wireframe(solution, options);
     } else {
-      image = args->wireframe ? render_wireframe(solution, options) : render_solution(solution, options);
+      RenderedImage gouraud = render_solution_with_linear(solution, options);
+      image = std::move(gouraud.display);
+      linear = std::move(gouraud.linear);
     }
-    write_png(args->out, image);
+    if (ends_with_exr(args->out))
+      write_exr(args->out, *linear);
+    else
+      write_png(args->out, image);
+    if (!args->exr.empty()) write_exr(args->exr, *linear);
     outputs.commit();
     std::cout << fmt::format("{}: {}x{} image of {} elements, exposure {:.6g}\n", args->out, image.width, image.height,
                              solution.faces.size(), options.exposure);

@@ -89,6 +89,16 @@ const BadInput kCases[] = {
     {"sweep_list_out_of_range", {}, "sweep " + kScene + " --out {d}/sweep --aeps 0.1,2", "--aeps"},
     {"render_camera_trailing_comma", {}, "render {d}/missing.ply --out {d}/i.png --camera 0,0,5,0,0,0,0,1,0,40,",
      "--camera"},
+    {"render_final_gather_without_scene", {}, "render {d}/missing.ply --out {d}/i.png --final-gather", "--scene"},
+    {"render_zero_samples_per_pixel", {}, "render {d}/missing.ply --out {d}/i.png --samples-per-pixel 0",
+     "--samples-per-pixel"},
+    {"render_negative_gather_tolerance", {}, "render {d}/missing.ply --out {d}/i.png --final-gather --scene " + kScene +
+     " --gather-tolerance -1", "--gather-tolerance"},
+    {"render_zero_visibility_samples", {}, "render {d}/missing.ply --out {d}/i.png --final-gather --scene " + kScene +
+     " --visibility-samples 0", "--visibility-samples"},
+    {"render_gather_option_without_final_gather", {}, "render {d}/missing.ply --out {d}/i.png --visibility-samples 8",
+     "--visibility-samples"},
+    {"render_exr_of_wireframe", {}, "render {d}/missing.ply --out {d}/i.png --wireframe --exr {d}/i.exr", "--exr"},
     {"sweep_missing_scene", {}, "sweep {d}/missing.obj --out {d}/sweep", "missing.obj"},
     {"reference_neither_points_nor_faces", {}, "reference " + kScene + " --out {d}/r.csv", "--points"},
     {"reference_points_and_faces", {{"p.csv", "x,y,z,nx,ny,nz\n0,1,0,0,1,0\n"}},

@@ -6,7 +6,9 @@
 // the points, not at the elements (Reichert 1992, "A two-pass radiosity method driven by lights and
 // viewer position"; Lischinski, Tampieri & Greenberg 1993, "Combining hierarchical radiosity and
 // discontinuity meshing"; Cohen & Wallace 1993, "Radiosity and realistic image synthesis", sec. 9.3).
-// hrad uses it to make sweep references that no run shares (experiments/sweep.h).
+// hrad uses it to make sweep references that no run shares (experiments/sweep.h): the leaf-by-leaf
+// gather of gather/leaf_gather.h (tolerance 0, each partly visible leaf sampled on its own) at
+// surface samples, times the reflectance.
 #pragma once
 
 #include <functional>
@@ -20,8 +22,8 @@
 namespace hrad {
 
 struct FinalGatherOptions {
-  /// Stratified points per leaf when the leaf is partly visible from x (Visibility::estimate_from_point);
-  /// leaves classified fully visible or hidden from x need none.
+  /// Stratified points per leaf when the leaf is partly visible from x; leaves classified fully
+  /// visible or hidden from x need none.
   int visibility_samples = 64;
   int threads = 0;  ///< 0 = all cores
   /// Progress: (points done, points in all).

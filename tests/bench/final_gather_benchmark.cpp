@@ -1,0 +1,131 @@
+// Throughput of the final gather (gather/leaf_gather.h) on the bundled Cornell box, solved by
+// hierarchical radiosity at its defaults (and at a finer aeps, where grouping leaves pays):
+//   * BM_GatheredImage: a gathered image (hrad render --final-gather's settings: shared rays, no
+//     per-point classification), points/s;
+//   * BM_GatherPoints: points on every patch (the sweep's error samples), per mode: the image's,
+//     the probes' (classified, each partly visible node sampled on its own) and leaf by leaf
+//     (tolerance 0, the sweep's reference), with the work per point;
+//   * BM_LeafFactors: all leaves' point factors at those points, the plain contour sum against a
+//     relative accuracy of 1e-9 (what the gather gives up by using the plain sum).
+// Run one core at a time and quote ratios from one run:
+//   taskset -c 0 build/bin/final_gather_benchmark --benchmark_counters_tabular=true
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include <tbb/global_control.h>
+
+#include "hrad/analysis/error_metrics.h"
+#include "hrad/formfactor/point_to_polygon.h"
+#include "hrad/gather/gathered_image.h"
+#include "hrad/gather/leaf_gather.h"
+#include "hrad/io/obj_reader.h"
+#include "hrad/render/render.h"
+#include "hrad/render/tone_map.h"
+#include "hrad/solvers/solve.h"
+
+namespace hrad {
+namespace {
+
+const Scene& cornell() {
+  static const Scene s = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  return s;
+}
+
+// Hierarchical radiosity at its defaults (fine = false) or at aeps = total / 20000 (~10k leaves).
+const Solution& solution(bool fine) {
+  static const Solution coarse = [] {
+    Solution s;
+    solve(cornell(), SolveOptions{}, &s);
+    return s;
+  }();
+  static const Solution finer = [] {
+    SolveOptions o;
+    o.aeps = cornell().total_area() / 20000;
+    Solution s;
+    solve(cornell(), o, &s);
+    return s;
+  }();
+  return fine ? finer : coarse;
+}
+
+std::vector<GatherPoint> surface_points(int per_patch) {
+  std::vector<GatherPoint> points;
+  for (const SurfaceSample& s : patch_samples(cornell(), per_patch))
+    points.push_back({s.position, cornell().patches[static_cast<std::size_t>(s.patch)].normal, s.patch});
+  return points;
+}
+
+LeafGatherOptions mode(int m) {
+  LeafGatherOptions o;
+  if (m == 0) {  // the image's
+    o.partial = PartialVisibility::shared;
+    o.classify_points = false;
+    o.visibility_samples = 32;
+  } else if (m == 2) {  // leaf by leaf
+    o.tolerance = 0.0;
+  }
+  return o;
+}
+
+void set_work(benchmark::State& state, const GatherWork& w, std::size_t leaves) {
+  const double p = w.points ? static_cast<double>(w.points) : 1.0;
+  state.counters["points/s"] = benchmark::Counter(static_cast<double>(w.points), benchmark::Counter::kIsRate);
+  state.counters["factors/point"] = static_cast<double>(w.node_visits) / p;
+  state.counters["leaves/point"] = static_cast<double>(w.leaves_covered) / p;
+  state.counters["rays/point"] = static_cast<double>(w.rays) / p;
+  state.counters["shafts/point"] = static_cast<double>(w.classifications) / p;
+  state.counters["leaves"] = static_cast<double>(leaves);
+}
+
+void BM_GatheredImage(benchmark::State& state) {
+  tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  const Solution& s = solution(state.range(0) != 0);
+  const LeafGather gather(cornell(), s, mode(0));
+  RenderOptions o;
+  o.camera = default_camera(s, 96, 96);
+  o.exposure = auto_exposure(s);
+  o.samples_per_pixel = 4;
+  for (auto _ : state) benchmark::DoNotOptimize(render_gathered(s, gather, o).points);
+  set_work(state, gather.work(), s.faces.size());
+}
+BENCHMARK(BM_GatheredImage)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1);
+
+void BM_GatherPoints(benchmark::State& state) {
+  tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  const Solution& s = solution(state.range(1) != 0);
+  const LeafGather gather(cornell(), s, mode(static_cast<int>(state.range(0))));
+  const std::vector<GatherPoint> points = surface_points(16);
+  for (auto _ : state) benchmark::DoNotOptimize(gather.gather(points).data());
+  set_work(state, gather.work(), s.faces.size());
+}
+BENCHMARK(BM_GatherPoints)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kSecond)->Iterations(1);
+
+void BM_LeafFactors(benchmark::State& state) {
+  const Solution& s = solution(false);
+  const std::vector<GatherPoint> points = surface_points(4);
+  std::vector<std::vector<Vec3>> leaves;
+  for (const auto& face : s.faces) {
+    leaves.emplace_back();
+    for (int v : face) leaves.back().push_back(s.vertices[static_cast<std::size_t>(v)]);
+  }
+  const double tolerance = state.range(0) ? 1e-9 : kLambertSumOnly;
+  std::size_t factors = 0;
+  for (auto _ : state) {
+    double sum = 0.0;
+    for (const GatherPoint& p : points)
+      for (std::size_t f = 0; f < leaves.size(); ++f) {
+        if (s.face_patch[f] == p.patch) continue;
+        sum += point_to_polygon(p.position, p.normal, leaves[f], tolerance);
+        ++factors;
+      }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.counters["factors/s"] = benchmark::Counter(static_cast<double>(factors), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_LeafFactors)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace hrad
+
+BENCHMARK_MAIN();

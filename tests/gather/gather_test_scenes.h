@@ -1,0 +1,37 @@
+// Solutions made in code for the gather tests: a scene's patches cut into leaves by the element
+// hierarchy's own splits (as every solver does), each leaf given a radiosity by a function of its
+// centroid, so that a test knows the B_j it gathers from.
+#pragma once
+
+#include <functional>
+
+#include "../solvers/solver_test_scenes.h"
+#include "hrad/geometry/polygon.h"
+#include "hrad/mesh/element_hierarchy.h"
+
+namespace hrad::test {
+
+/// The leaves of `scene` split uniformly to at most `max_area` (patch p to at most
+/// max_area * area_scale(p) when given, for trees of different depths), with face_radiosity
+/// B(centroid, patch) (patch_radiosity and vertex_radiosity are left as the hierarchy made them:
+/// a gather reads only the leaves).
+inline Solution leaves_with(const Scene& scene, double max_area, const std::function<Rgb(const Vec3&, int)>& radiosity,
+                           const std::function<double(int)>& area_scale = {}) {
+  ElementHierarchy h(scene);
+  for (int p = 0; p < static_cast<int>(scene.patches.size()); ++p)
+    h.subdivide_uniform(h.root(p), max_area * (area_scale ? area_scale(p) : 1.0));
+  Solution s = h.to_solution();
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    std::vector<Vec3> polygon;
+    for (int v : s.faces[f]) polygon.push_back(s.vertices[static_cast<std::size_t>(v)]);
+    s.face_radiosity[f] = radiosity(polygon_centroid(polygon), s.face_patch[f]);
+  }
+  return s;
+}
+
+/// A uniform field: every leaf at `b`.
+inline Solution uniform_leaves(const Scene& scene, double max_area, const Rgb& b) {
+  return leaves_with(scene, max_area, [&](const Vec3&, int) { return b; });
+}
+
+}  // namespace hrad::test
