@@ -27,9 +27,9 @@ bool behind(std::span<const Vec3> a, std::span<const Vec3> b) {
   return true;
 }
 
-// True when the receiver's diameter is at most `ratio` times the gap between the bounding spheres
-// (about the vertex mean) of the two polygons.
-bool separated(std::span<const Vec3> receiver, std::span<const Vec3> source, double ratio) {
+}  // namespace
+
+bool FormFactorEvaluator::separated(std::span<const Vec3> receiver, std::span<const Vec3> source, double ratio) {
   auto sphere = [](std::span<const Vec3> p) {
     Vec3 c = Vec3::Zero();
     for (const Vec3& v : p) c += v;
@@ -44,7 +44,6 @@ bool separated(std::span<const Vec3> receiver, std::span<const Vec3> source, dou
   return gap > 0.0 && 2.0 * rr <= ratio * gap;
 }
 
-}  // namespace
 
 FormFactorEvaluator::FormFactorEvaluator(const Scene& scene, const Effects& effects, const Visibility* visibility,
                                          int visibility_samples, FormFactorKernel kernel)
@@ -99,20 +98,21 @@ FormFactorEstimate FormFactorEvaluator::estimate(std::span<const Vec3> receiver,
 
 double FormFactorEvaluator::pair_visibility(std::span<const Vec3> receiver, int receiver_patch,
                                             std::span<const Vec3> source, int source_patch,
-                                            const std::vector<int>* occluders) const {
-  return weighted_visibility(receiver, receiver_patch, source, source_patch, occluders).first;
+                                            const std::vector<int>* occluders, int samples) const {
+  return weighted_visibility(receiver, receiver_patch, source, source_patch, occluders, samples).first;
 }
 
 std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<const Vec3> receiver, int receiver_patch,
                                                                   std::span<const Vec3> source, int source_patch,
-                                                                  const std::vector<int>* occluders) const {
+                                                                  const std::vector<int>* occluders, int samples) const {
   // Ray-traced form factors (Wallace, Elmquist & Haines 1989): the visible fraction weighted by the
   // point-to-point kernel over kx stratified receiver points, ky rays from each, so that the near
   // parts of a pair count as much as they contribute to F. The kernel is symmetric, so the
   // fraction is the same in both directions and reciprocity is kept.
   const std::uint64_t seed = pair_seed(receiver, receiver_patch, source, source_patch);
-  const int kx = std::max(1, static_cast<int>(std::lround(std::sqrt(double(visibility_samples_)))));
-  const int ky = std::max(1, (visibility_samples_ + kx - 1) / kx);
+  const int n = samples > 0 ? samples : visibility_samples_;
+  const int kx = std::max(1, static_cast<int>(std::lround(std::sqrt(double(n)))));
+  const int ky = std::max(1, (n + kx - 1) / kx);
   detail::Rng rx(detail::mix_seed(seed, 1));
   thread_local std::vector<Vec2> ux;
   detail::stratified_unit_square(kx, rx, &ux);
@@ -176,9 +176,20 @@ double FormFactorEvaluator::point_factor(const Vec3& x, const Vec3& n, const Vec
   return point_to_polygon_limit(x, n, inward, source);
 }
 
-PairFormFactor FormFactorEvaluator::analytic(std::span<const Vec3> receiver, std::span<const Vec3> source) const {
+PairFormFactor FormFactorEvaluator::gauss(std::span<const Vec3> receiver, std::span<const Vec3> source) const {
   evaluations_.fetch_add(1, std::memory_order_relaxed);
-  return polygon_to_polygon(receiver, source, kSolverPairTolerance);
+  int points_r = 0, points_s = 0;
+  const double f_rs = receiver_gauss_factor(receiver, source, kLambertSumOnly, &points_r);
+  const double f_sr = receiver_gauss_factor(source, receiver, kLambertSumOnly, &points_s);
+  point_factors_.fetch_add(static_cast<std::uint64_t>(points_r + points_s), std::memory_order_relaxed);
+  const double exchange = 0.5 * (polygon_area(receiver) * f_rs + polygon_area(source) * f_sr);
+  return {exchange / polygon_area(receiver), exchange / polygon_area(source)};
+}
+
+PairFormFactor FormFactorEvaluator::analytic(std::span<const Vec3> receiver, std::span<const Vec3> source,
+                                             double rel_tol) const {
+  evaluations_.fetch_add(1, std::memory_order_relaxed);
+  return polygon_to_polygon(receiver, source, rel_tol);
 }
 
 double FormFactorEvaluator::receiver_factor(std::span<const Vec3> receiver, std::span<const Vec3> source,

@@ -138,6 +138,7 @@ class ErrorBoundOracle final : public RefinementOracle {
   int channels_;
   const std::vector<Rgb>* cluster_radiosity_;
   int rays_per_point_;
+  int pair_samples_;
 };
 
 /// The feps weights: a priori radiosity of each patch relative to the scene's, w = max over
