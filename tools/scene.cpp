@@ -1,16 +1,21 @@
-// hrad scene generate --polygons N [--seed S] --out FILE.obj
+// hrad scene generate --polygons N [--kind office|pillars|city|urban] [--seed S] --out FILE.obj
 //
-// Writes a scale scene for benchmarks (lib/hrad/experiments/scene_generator.h): a closed, tiled
-// open-plan office 3 m high with checkerboard ceiling lights and furniture made of closed boxes
-// (desks with chairs and monitors, tables, cabinets, stacks of boxes, each turned at random),
-// sized so that it has between N - 5 and N input polygons, the same for the same N and seed.
+// Writes a scale scene for benchmarks (lib/hrad/experiments/scene_generator.h), the same for the
+// same N, kind and seed:
+//   office   a closed, tiled open-plan office 3 m high with checkerboard ceiling lights and
+//            furniture made of closed boxes (desks with chairs and monitors, tables, cabinets,
+//            stacks of boxes, each turned at random), between N - 5 and N input polygons;
+//   pillars  a closed 4 m hall with a grid of floor-to-ceiling pillars (one per 3 x 3 m), every
+//            surface tiled, lights on a checkerboard of ceiling tiles: heavily occluded, about N;
+//   city     blocks of box buildings (walls tiled per storey and 5 m bay) on a tiled ground under
+//            an emitting sky quad, open at the sides, about N;
+//   urban    blocks of buildings on a ground, open and not watertight like city meshes
+//            (lib/hrad/experiments/urban_generator.h), for view factors at scale, about N facets.
 // The material library is written beside FILE.obj (same name, .mtl); both atomically.
 //
 //   --polygons N   input polygons wanted (64 .. 10,000,000)
-//   --seed S       furniture placement seed (default 1)
-//   --kind K       office (default) or urban: blocks of buildings on a ground, open and not
-//                  watertight, like city meshes (lib/hrad/experiments/urban_generator.h), for view
-//                  factors at scale; about N facets
+//   --kind K       office (default), pillars, city or urban
+//   --seed S       placement seed (default 1)
 //   --out FILE     the OBJ file to write
 #include <charconv>
 #include <iostream>
@@ -30,7 +35,7 @@ namespace hrad::cli {
 void add_scene_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("scene", "Scene utilities: generate scale scenes for benchmarks");
   cmd->require_subcommand(1);
-  auto* gen = cmd->add_subcommand("generate", "Write a closed office room with about N input polygons (OBJ + MTL)");
+  auto* gen = cmd->add_subcommand("generate", "Write a scale scene (office, pillar hall or city) with about N input polygons (OBJ + MTL)");
   struct Args {
     int polygons = 0;
     std::string seed = "1";
@@ -39,7 +44,7 @@ void add_scene_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   gen->add_option("--polygons", args->polygons, "Input polygons wanted (64 .. 10000000)")->required();
   gen->add_option("--seed", args->seed, "Placement seed (default 1)");
-  gen->add_option("--kind", args->kind, "office (default: a closed room) or urban (buildings on a ground, open)");
+  gen->add_option("--kind", args->kind, "office (default) | pillars | city (closed rooms) | urban (buildings on a ground, open)");
   gen->add_option("--out", args->out, "OBJ file to write (the .mtl goes beside it)")->required();
   gen->callback([args] {
     // Parsed here, not by CLI11 (which accepted 99999999999999999999): a whole number that fits 64 bits.
@@ -60,10 +65,10 @@ void add_scene_command(CLI::App& app) {
     SceneGeneratorOptions o;
     o.polygons = args->polygons;
     o.seed = seed;
+    if (args->kind != "urban") o.layout = parse_scene_layout(args->kind);
     OutputFiles outputs;
     outputs.declare("--out", args->out);
     outputs.declare("the material library beside --out", generated_mtl_path(args->out));
-    if (args->kind != "office" && args->kind != "urban") throw Error(fmt::format("--kind: '{}' is not office or urban", args->kind));
     const GeneratedScene scene = args->kind == "urban" ? generate_urban({args->polygons, seed}) : generate_scene(o);
     write_generated_scene(scene, args->out, [](std::string_view line) { std::cerr << "hrad " << line << "\n"; });
     outputs.commit();

@@ -163,5 +163,26 @@ TEST(PolygonToPolygon, UnitIndependent) {
   }
 }
 
+TEST(PolygonToPolygon, AbsoluteToleranceBoundsTheErrorOfAPairThatBarelySeesItself) {
+  // A large square grazing the plane of a small one: only a sliver of each lies in front of the
+  // other, the factor is ~1e-10 and its contour sum cancels. With abs_tol the answer is within
+  // abs_tol times the smaller area of the full-precision one (in exchange units), whatever the cost
+  // of the latter.
+  const Polygon small = rectangle(Vec3::Zero(), Vec3(1, 0, 0), Vec3(0, 1, 0));
+  // Tilted by 1e-4 rad about the x axis, its near edge 1e-5 below the small square's plane: its
+  // front half-space leaves a sliver of the small square, and vice versa.
+  const double t = 1e-4;
+  const Polygon large = {Vec3(-5, 3, -1e-5), Vec3(5, 3, -1e-5), Vec3(5, 3 + 10 * std::cos(t), -1e-5 + 10 * std::sin(t)),
+                         Vec3(-5, 3 + 10 * std::cos(t), -1e-5 + 10 * std::sin(t))};
+  const double a_small = 1.0;
+  for (const auto& [from, to] : {std::pair{small, large}, std::pair{large, small}}) {
+    const PairFormFactor exact = polygon_to_polygon(from, to);
+    const PairFormFactor fast = polygon_to_polygon(from, to, 1e-7, 1e-9);
+    const double area_from = polygon_area(from);
+    EXPECT_NEAR(fast.from_to * area_from, exact.from_to * area_from, 1e-9 * a_small);
+    EXPECT_GE(fast.from_to, 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace hrad::test

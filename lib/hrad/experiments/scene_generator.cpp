@@ -126,12 +126,132 @@ std::pair<std::string, std::vector<Box>> furniture(Rng& rng, int budget) {
   return {};
 }
 
+// A square grid of square pillars in a closed hall: the floor and ceiling are tiled in t x t tiles,
+// one tile of every pillar_pitch x pillar_pitch block is a pillar (no floor or ceiling tile there,
+// 4 walls tiled in storeys of t), lights on a checkerboard of the remaining ceiling tiles.
+GeneratedScene pillar_hall(int n) {
+  constexpr double t = 1.0, height = 4.0;
+  constexpr int pitch = 3, storeys = 4;  // one pillar per 3 x 3 tiles; 4 x 4 = 16 pillar faces
+  GeneratedScene s;
+  s.materials = generated_materials();
+  Builder b(s);
+  // Per block of pitch^2 tiles: 2 (pitch^2 - 1) floor and ceiling tiles and 4 storeys of pillar faces.
+  const double per_block = 2.0 * (pitch * pitch - 1) + 4.0 * storeys;
+  const int blocks = std::max(1, static_cast<int>(std::sqrt(n / per_block)));
+  const int tiles = blocks * pitch;
+  s.cells_x = s.cells_z = tiles;
+  const double size = tiles * t;
+  s.room_size = Vec3(size, height, size);
+  const int floor_group = b.group("floor"), ceiling_group = b.group("ceiling"), wall_group = b.group("walls"),
+            light_group = b.group("lights"), pillar_group = b.group("pillars");
+  auto pillar_tile = [&](int i, int k) { return i % pitch == 1 && k % pitch == 1; };
+  for (int i = 0; i < tiles; ++i)
+    for (int k = 0; k < tiles; ++k) {
+      const double x0 = i * t, x1 = x0 + t, z0 = k * t, z1 = z0 + t;
+      if (pillar_tile(i, k)) {
+        // The pillar's four faces, outwards, from floor to ceiling in storeys.
+        for (int y = 0; y < storeys; ++y) {
+          const double y0 = y * height / storeys, y1 = (y + 1) * height / storeys;
+          b.quad({{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0}}, -Vec3::UnitZ(), kWall, pillar_group);
+          b.quad({{x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}}, Vec3::UnitZ(), kWall, pillar_group);
+          b.quad({{x0, y0, z0}, {x0, y0, z1}, {x0, y1, z1}, {x0, y1, z0}}, -Vec3::UnitX(), kWall, pillar_group);
+          b.quad({{x1, y0, z0}, {x1, y0, z1}, {x1, y1, z1}, {x1, y1, z0}}, Vec3::UnitX(), kWall, pillar_group);
+        }
+        continue;
+      }
+      b.quad({{x0, 0, z0}, {x1, 0, z0}, {x1, 0, z1}, {x0, 0, z1}}, Vec3::UnitY(), kFloor, floor_group);
+      const bool light = (i % pitch == 0) && (k % pitch == 0) && ((i / pitch + k / pitch) % 2 == 0);
+      b.quad({{x0, height, z0}, {x1, height, z0}, {x1, height, z1}, {x0, height, z1}}, -Vec3::UnitY(),
+             light ? kLight : kCeiling, light ? light_group : ceiling_group);
+    }
+  // The hall's walls, one tile wide and a storey high.
+  for (int y = 0; y < storeys; ++y) {
+    const double y0 = y * height / storeys, y1 = (y + 1) * height / storeys;
+    for (int i = 0; i < tiles; ++i) {
+      const double a0 = i * t, a1 = a0 + t;
+      b.quad({{a0, y0, 0}, {a1, y0, 0}, {a1, y1, 0}, {a0, y1, 0}}, Vec3::UnitZ(), kWall, wall_group);
+      b.quad({{a0, y0, size}, {a1, y0, size}, {a1, y1, size}, {a0, y1, size}}, -Vec3::UnitZ(), kWall, wall_group);
+      b.quad({{0, y0, a0}, {0, y0, a1}, {0, y1, a1}, {0, y1, a0}}, Vec3::UnitX(), kWall, wall_group);
+      b.quad({{size, y0, a0}, {size, y0, a1}, {size, y1, a1}, {size, y1, a0}}, -Vec3::UnitX(), kWall, wall_group);
+    }
+  }
+  return s;
+}
+
+// City blocks: a ground of 10 m tiles, buildings of random footprint and storeys (walls tiled by
+// storey and bay, flat roofs) on a grid of 40 m blocks separated by streets, and an emitting sky
+// quad high above, facing down. Open: light leaves at the sides, as from real city meshes.
+GeneratedScene city(int n, Rng& rng) {
+  constexpr double block = 40.0, street = 12.0, tile = 10.0, storey = 3.5, bay = 5.0;
+  GeneratedScene s;
+  s.materials = generated_materials();
+  s.materials[kLight].emission = Rgb(1.0, 1.0, 1.0);  // the sky: exitance 1
+  Builder b(s);
+  // About 190 faces per block (four buildings and the ground under it): enough blocks for n, the
+  // last buildings left out once n is reached.
+  const int blocks = std::max(1, static_cast<int>(std::ceil(std::sqrt(n / 190.0))));
+  const double pitch = block + street, size = blocks * pitch + street;
+  s.cells_x = s.cells_z = blocks;
+  const int ground_group = b.group("ground"), sky_group = b.group("sky");
+  const int ground_tiles = static_cast<int>(std::ceil(size / tile));
+  for (int i = 0; i < ground_tiles; ++i)
+    for (int k = 0; k < ground_tiles; ++k) {
+      const double x0 = i * tile, x1 = std::min(size, x0 + tile), z0 = k * tile, z1 = std::min(size, z0 + tile);
+      b.quad({{x0, 0, z0}, {x1, 0, z0}, {x1, 0, z1}, {x0, 0, z1}}, Vec3::UnitY(), kFloor, ground_group);
+    }
+  const double sky = 4.0 * size;
+  b.quad({{-size, sky, -size}, {2 * size, sky, -size}, {2 * size, sky, 2 * size}, {-size, sky, 2 * size}}, -Vec3::UnitY(),
+         kLight, sky_group);
+  int buildings = 0;
+  for (int bi = 0; bi < blocks; ++bi)
+    for (int bk = 0; bk < blocks; ++bk) {
+      // Four buildings per block in its quarters, each inset from the quarter's edges.
+      for (int q = 0; q < 4; ++q) {
+        if (static_cast<int>(s.faces.size()) >= n) break;
+        const double qx = street + bi * pitch + (q % 2) * block / 2, qz = street + bk * pitch + (q / 2) * block / 2;
+        const double w = bay * (1 + static_cast<int>(rng.below(3))), d = bay * (1 + static_cast<int>(rng.below(3)));
+        const double x0 = qx + rng.uniform(0.5, block / 2 - w - 0.5), z0 = qz + rng.uniform(0.5, block / 2 - d - 0.5);
+        const double x1 = x0 + w, z1 = z0 + d;
+        const int floors = 1 + static_cast<int>(rng.below(8));
+        const double h = floors * storey;
+        const int g = b.group(fmt::format("building_{}", buildings++));
+        const int material = rng.below(2) == 0 ? kWall : kCardboard;
+        for (int f = 0; f < floors; ++f) {
+          const double y0 = f * storey, y1 = y0 + storey;
+          for (double a = x0; a < x1 - 1e-9; a += bay) {
+            b.quad({{a, y0, z0}, {a + bay, y0, z0}, {a + bay, y1, z0}, {a, y1, z0}}, -Vec3::UnitZ(), material, g);
+            b.quad({{a, y0, z1}, {a + bay, y0, z1}, {a + bay, y1, z1}, {a, y1, z1}}, Vec3::UnitZ(), material, g);
+          }
+          for (double a = z0; a < z1 - 1e-9; a += bay) {
+            b.quad({{x0, y0, a}, {x0, y0, a + bay}, {x0, y1, a + bay}, {x0, y1, a}}, -Vec3::UnitX(), material, g);
+            b.quad({{x1, y0, a}, {x1, y0, a + bay}, {x1, y1, a + bay}, {x1, y1, a}}, Vec3::UnitX(), material, g);
+          }
+        }
+        b.quad({{x0, h, z0}, {x1, h, z0}, {x1, h, z1}, {x0, h, z1}}, Vec3::UnitY(), kWood, g);
+      }
+    }
+  s.room_size = Vec3(size, sky, size);
+  return s;
+}
+
 }  // namespace
+
+SceneLayout parse_scene_layout(std::string_view text) {
+  if (text == "office") return SceneLayout::kOffice;
+  if (text == "pillars") return SceneLayout::kPillars;
+  if (text == "city") return SceneLayout::kCity;
+  throw Error(fmt::format("--kind must be office, pillars, city or urban, got '{}'", text));
+}
 
 GeneratedScene generate_scene(const SceneGeneratorOptions& options) {
   const int n = options.polygons;
   if (n < kMinGeneratedPolygons || n > 10'000'000)
     throw Error(fmt::format("--polygons must be in [{}, 10000000], got {}", kMinGeneratedPolygons, n));
+  if (options.layout == SceneLayout::kPillars) return pillar_hall(n);
+  if (options.layout == SceneLayout::kCity) {
+    Rng city_rng(options.seed);
+    return city(n, city_rng);
+  }
   GeneratedScene s;
   s.materials = generated_materials();
   Builder b(s);

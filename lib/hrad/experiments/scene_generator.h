@@ -1,6 +1,12 @@
-// Scale scenes for benchmarks: a closed, tiled room (an open-plan office) with ceiling lights and
-// furniture built from closed boxes, sized to about a requested number of input polygons and
-// deterministic in a seed.
+// Scale scenes for benchmarks, sized to about a requested number of input polygons and
+// deterministic in a seed. Three layouts:
+//  * office: a closed, tiled room (an open-plan office) with ceiling lights and furniture built from
+//    closed boxes (below);
+//  * pillars: a closed hall whose floor and ceiling tiles are pierced by a grid of square pillars
+//    from floor to ceiling, every pillar face tiled, lights in the ceiling: every shaft between two
+//    surfaces crosses many occluders, as in halls, car parks and warehouses;
+//  * city: blocks of box buildings (walls tiled by storey, flat roofs) on a tiled ground under an
+//    emitting sky quad, open at the sides like real city meshes.
 //
 // Layout: the floor is a grid of 2.5 m cells; floor and ceiling are tiled with 1.25 m quads, the
 // walls with 1.25 x 1.5 m quads (3 m high), all facing into the room; every other cell's first
@@ -15,6 +21,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hrad/core/scene.h"
@@ -22,10 +29,16 @@
 
 namespace hrad {
 
+enum class SceneLayout { kOffice, kPillars, kCity };
+
 struct SceneGeneratorOptions {
   int polygons = 1000;      ///< requested input polygons (>= kMinGeneratedPolygons)
   std::uint64_t seed = 1;   ///< the same seed and count give the same scene, bit for bit
+  SceneLayout layout = SceneLayout::kOffice;
 };
+
+/// Parses "office" | "pillars" | "city"; hrad::Error naming --kind otherwise.
+SceneLayout parse_scene_layout(std::string_view text);
 
 /// Fewest polygons a generated room can have (a 1 x 1 cell room's tiles and one group).
 inline constexpr int kMinGeneratedPolygons = 64;

@@ -59,6 +59,7 @@ using detail::bisect;
 struct Refinement {
   Vec3 from_normal, to_normal;
   double rel_tol;
+  double abs_floor;  // the scaled absolute accuracy per unit of the smaller piece's area
   std::size_t pieces = 0;
 
   double refine(const Triangle& a, const Triangle& b) {
@@ -76,7 +77,8 @@ struct Refinement {
     const double value = std::max(0.0, sum.area_factor) * s * s;
     const double bound = kEps * sum.magnitude;
     // Below the floor the piece's factor is noise against its own area, whatever the total.
-    if (bound <= std::max(kPieceMargin * rel_tol * sum.area_factor, 1e-15 * std::min(a.area, b.area) / (s * s)) ||
+    if (bound <= std::max({kPieceMargin * rel_tol * sum.area_factor, 1e-15 * std::min(a.area, b.area) / (s * s),
+                           kPieceMargin * abs_floor * std::min(a.area, b.area) / (s * s)}) ||
         pieces >= kMaxPieces)
       return value;
     const double ratio = std::max(a.radius, b.radius) / std::min(a.radius, b.radius);
@@ -108,17 +110,19 @@ void centre_and_radius(std::span<const Vec3> p, Vec3* centre, double* radius) {
 
 }  // namespace
 
-PairFormFactor polygon_to_polygon(std::span<const Vec3> from, std::span<const Vec3> to, double rel_tol) {
+PairFormFactor polygon_to_polygon(std::span<const Vec3> from, std::span<const Vec3> to, double rel_tol,
+                                  double abs_tol) {
   const detail::PreparedPair pair = detail::prepare_pair(from, to);
   if (!pair.visible) return {};
-  Refinement refinement{pair.from_normal, pair.to_normal, rel_tol};
+  Refinement refinement{pair.from_normal, pair.to_normal, rel_tol, abs_tol};
   Vec3 cf, ct;
   double rf, rt;
   centre_and_radius(pair.from, &cf, &rf);
   centre_and_radius(pair.to, &ct, &rt);
   const detail::ContourSum sum = detail::contour_area_factor(pair.from, pair.to);
   double area_factor = sum.area_factor;
-  const bool accurate = kEps * sum.magnitude <= rel_tol * sum.area_factor;
+  const double floor = abs_tol * std::min(pair.from_area, pair.to_area) / (pair.scale * pair.scale);
+  const bool accurate = kEps * sum.magnitude <= std::max(rel_tol * sum.area_factor, floor);
   if (!accurate) {
     const bool far = detail::far_field_order((cf - ct).norm(), rf, rt, rel_tol * kFarMargin) > 0;
     const bool touching_alike =

@@ -187,9 +187,9 @@ PairFormFactor FormFactorEvaluator::gauss(std::span<const Vec3> receiver, std::s
 }
 
 PairFormFactor FormFactorEvaluator::analytic(std::span<const Vec3> receiver, std::span<const Vec3> source,
-                                             double rel_tol) const {
+                                             double rel_tol, double abs_tol) const {
   evaluations_.fetch_add(1, std::memory_order_relaxed);
-  return polygon_to_polygon(receiver, source, rel_tol);
+  return polygon_to_polygon(receiver, source, rel_tol, abs_tol);
 }
 
 double FormFactorEvaluator::receiver_factor(std::span<const Vec3> receiver, std::span<const Vec3> source,

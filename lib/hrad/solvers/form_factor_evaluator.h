@@ -99,9 +99,9 @@ class FormFactorEvaluator {
   double point_factor(const Vec3& x, const Vec3& n, const Vec3& inward, std::span<const Vec3> source) const;
 
   /// Both directions of the unoccluded factor by the closed form (polygon_to_polygon() at
-  /// `rel_tol`), whatever the evaluator's kernel.
+  /// `rel_tol`, or `abs_tol` in factor units), whatever the evaluator's kernel.
   PairFormFactor analytic(std::span<const Vec3> receiver, std::span<const Vec3> source,
-                          double rel_tol = kSolverPairTolerance) const;
+                          double rel_tol = kSolverPairTolerance, double abs_tol = 0.0) const;
 
   /// Both directions by Gauss points on each polygon (receiver_gauss_factor(): 3 x 3 on a quad,
   /// degree 5) with the exact point factor at each, made reciprocal by taking the mean of the two

@@ -18,6 +18,12 @@ namespace {
 // (~1e-8 there, at a tenth of the closed form's cost for such pairs).
 constexpr double kLinkTolerance = 1e-7;
 constexpr double kGaussSeparation = 0.25;
+// Pairs whose points' quadratures put both factors below this keep the quadratures' exchange; and
+// the closed form is asked for 1e-9 absolute too: a pair that barely sees itself (one polygon
+// grazing the other's plane) would refine its slivers for a fraction of a second to get a factor of
+// 1e-12 to 1e-7 relative, which no sum ever notices.
+constexpr double kNegligibleFactor = 1e-6;
+constexpr double kLinkAbsoluteTolerance = 1e-9;
 
 // One side of an element pair: the receiver's points, their unoccluded point factors to the
 // source, and their visible fractions of it.
@@ -376,11 +382,14 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   // The link's unoccluded exchange by the closed form (or Gauss points where the pair is far apart
   // against its size): the Simpson points' quadratures can be off by a percent for large elements
   // even where the two sides agree (a pair symmetric about a plane).
-  const bool far = FormFactorEvaluator::separated(p.polygon(), q.polygon(), kGaussSeparation) &&
-                   FormFactorEvaluator::separated(q.polygon(), p.polygon(), kGaussSeparation);
-  const double linked = p.area * (far ? evaluator_.gauss(p.polygon(), q.polygon())
-                                      : evaluator_.analytic(p.polygon(), q.polygon(), kLinkTolerance))
-                                     .from_to;
+  double linked = exchange;
+  if (exchange >= kNegligibleFactor * std::min(p.area, q.area)) {
+    const bool far = FormFactorEvaluator::separated(p.polygon(), q.polygon(), kGaussSeparation) &&
+                     FormFactorEvaluator::separated(q.polygon(), p.polygon(), kGaussSeparation);
+    linked = p.area * (far ? evaluator_.gauss(p.polygon(), q.polygon())
+                           : evaluator_.analytic(p.polygon(), q.polygon(), kLinkTolerance, kLinkAbsoluteTolerance))
+                          .from_to;
+  }
   c.f_pq = linked * fraction / p.area;
   c.f_qp = linked * fraction / q.area;
   if (!(c.f_pq > 0.0) && !(c.f_qp > 0.0)) {
