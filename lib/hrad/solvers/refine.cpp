@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "hrad/core/progress.h"
+
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -26,13 +28,15 @@ namespace {
 // Refines `work` breadth-first until every pair is linked or dropped (see refine()).
 void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const RefinementOracle& oracle, std::vector<Candidate> work,
                    const std::function<void(std::string_view)>& progress, RefineResult& result) {
-  const std::size_t nodes_before = h.size();
   std::vector<Candidate> next;
   int level = 0;
   while (!work.empty()) {
+    // A level of a large scene takes minutes: its pairs decided so far, with an estimate.
+    ProgressReporter decided(fmt::format("refine: level {}", level + 1), work.size(), "pairs", progress);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 16),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) oracle.decide(work[i]);
+                        decided.advance(range.size());
                       });
     result.candidates += work.size();
     next.clear();
@@ -71,7 +75,8 @@ void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const Refinemen
       }
     }
     ++level;
-    if (progress)
+    // Levels too short to show progress stay quiet.
+    if (progress && decided.lines() > 0)
       progress(fmt::format("refine: level {}: {} pairs examined, {} links, {} elements, {} pairs next", level,
                            work.size(), result.links.size(), h.size(), next.size()));
     std::swap(work, next);
