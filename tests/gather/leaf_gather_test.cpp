@@ -160,6 +160,36 @@ TEST(LeafGather, OccludedRoomAgreesWithExactVisibility) {
     EXPECT_LT((per_leaf[i] - exact[i]).abs().maxCoeff(), 1e-2 * exact[i].maxCoeff()) << i;
 }
 
+// Sampled per node, a partly visible node is opened to its leaves however uniform it is, so with
+// one radiosity per patch (the grouping's bound is 0) the grouped gather is the leaf-by-leaf one to
+// rounding: the same leaves, the same seeds, the same points, wherever visibility is partial. A
+// uniform light gathered whole and sampled with k points instead resolved the occluder's shadow
+// edge across it k times more coarsely than the leaves do.
+TEST(LeafGather, PartlyVisibleNodesAreSampledLeafByLeaf) {
+  Scene box = make_box(3, 2.5, 4, {material(Rgb::Constant(0.5), Rgb::Zero())}, {0, 0, 0, 0, 0, 0});
+  add_block(box, 1.0, 2.0, 0.8, 1.4, 1.5, 2.5, 0);
+  const Solution leaves = leaves_with(box, 0.1, [](const Vec3&, int p) { return Rgb(1.0 + 0.1 * p, 1.0, 2.0 - 0.05 * p); });
+  const std::vector<GatherPoint> points = {{Vec3(1.4, 0, 2.1), Vec3::UnitY(), 0},
+                                           {Vec3(0.9, 0, 1.3), Vec3::UnitY(), 0},
+                                           {Vec3(1.6, 0.5, 1.2), Vec3(0.2, 1, 0.3).normalized(), -1}};
+  for (bool classify : {true, false}) {
+    LeafGatherOptions o;
+    o.classify_points = classify;
+    o.visibility_samples = 16;
+    o.tolerance = 0.0;
+    const LeafGather by_leaf(box, leaves, o);
+    const std::vector<Rgb> reference = by_leaf.gather(points);
+    o.tolerance = 0.05;
+    const LeafGather grouped(box, leaves, o);
+    const std::vector<Rgb> h = grouped.gather(points);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      EXPECT_LT((h[i] - reference[i]).abs().maxCoeff(), 1e-12 * reference[i].maxCoeff()) << classify << " " << i;
+    EXPECT_EQ(grouped.work().rays, by_leaf.work().rays) << classify;  // the same samples
+    EXPECT_GT(grouped.work().rays, 0u) << classify;                    // some leaf is partly visible
+    EXPECT_LT(grouped.work().nodes_gathered, by_leaf.work().nodes_gathered) << classify;  // and some grouping happened
+  }
+}
+
 // The shared rays (PartialVisibility::shared, the image's estimator) are unbiased: over many
 // seeds their mean approaches the exact gather within a few standard errors, at a point whose
 // view of several patches is partly blocked.

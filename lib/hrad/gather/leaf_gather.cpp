@@ -239,6 +239,8 @@ Rgb LeafGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w, do
           }
         }
       }
+      // Sampled per node, a partly visible node is opened down to its leaves (see the header).
+      if (whole && c == PairClass::kPartial && sampled && !shared && !node.is_leaf()) whole = false;
       if (!whole) {
         for (int child : trees_.children(id)) self(self, child, c, occ, depth + 1);
         return;

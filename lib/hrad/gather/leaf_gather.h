@@ -29,7 +29,12 @@
 //
 // Partly visible nodes (neither classification settled them) are sampled:
 //   * PartialVisibility::per_node: `visibility_samples` stratified points on the node, the
-//     visible fraction weighted by the kernel (Wallace, Elmquist & Haines 1989);
+//     visible fraction weighted by the kernel (Wallace, Elmquist & Haines 1989). A partly visible
+//     node that is not a leaf is opened (its children classified from x where classify_points),
+//     however uniform its radiosity: k points over a whole uniform light resolve a shadow edge
+//     across it far more coarsely than k points on each of its leaves, and the grouping's bound
+//     speaks of the radiosity only. So per node the sampled gather is the leaf-by-leaf one, wherever
+//     visibility is partial;
 //   * PartialVisibility::shared: `visibility_samples` rays per point shared by all partly visible
 //     nodes, node i drawn with probability proportional to its unoccluded contribution
 //     c_i = F_i B_i (systematic sampling over their cumulative sum, so node i gets the integer
