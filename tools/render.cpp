@@ -103,14 +103,6 @@ bool ends_with_exr(const std::string& path) {
   return tail == ".exr";
 }
 
-// The solution's patch ids must name patches of the scene.
-void check_patches(const Solution& solution, const std::string& solution_path, const Scene& scene,
-                   const std::string& scene_path) {
-  for (int p : solution.face_patch)
-    if (p < 0 || static_cast<std::size_t>(p) >= scene.patches.size())
-      throw Error(fmt::format("{}: patch id {} but {} has {} patches", solution_path, p, scene_path, scene.patches.size()));
-}
-
 std::pair<double, double> parse_range(const std::string& text) {
   const std::string usage = "--error-range: expected LO,HI with 0 <= LO < HI";
   const std::optional<std::vector<double>> v = comma_numbers(text);
@@ -231,7 +223,7 @@ void add_render_command(CLI::App& app) {
       std::vector<std::pair<std::string, std::string>> inputs;
       for (const std::string& f : scene->files) inputs.emplace_back("an input of --scene", f);
       outputs.check_inputs(inputs);
-      check_patches(solution, args->solution, *scene, args->scene);
+      check_solution_patches(solution, args->solution, *scene, args->scene);
     }
     Image image;
     std::optional<HdrImage> linear;
@@ -253,7 +245,7 @@ void add_render_command(CLI::App& app) {
           per_point * w.node_visits, per_point * w.leaves_covered, per_point * w.rays);
     } else if (error_image) {
       const Solution reference = read_solution_ply(args->reference);
-      check_patches(reference, args->reference, *scene, args->scene);
+      check_solution_patches(reference, args->reference, *scene, args->scene);
       const ErrorMetrics metrics = compare_solutions(*scene, solution, reference, 256,
                                                      args->include_emitters ? Emitters::include : Emitters::exclude);
       FalseColourOptions colours;

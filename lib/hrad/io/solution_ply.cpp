@@ -174,4 +174,11 @@ Solution read_solution_ply(const std::string& path) {
   return s;
 }
 
+void check_solution_patches(const Solution& solution, const std::string& solution_path, const Scene& scene,
+                            const std::string& scene_path) {
+  for (int p : solution.face_patch)
+    if (p < 0 || static_cast<std::size_t>(p) >= scene.patches.size())
+      throw Error(fmt::format("{}: patch id {} but {} has {} patches", solution_path, p, scene_path, scene.patches.size()));
+}
+
 }  // namespace hrad

@@ -16,6 +16,7 @@
 #include <ostream>
 #include <string>
 
+#include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
 
 namespace hrad {
@@ -30,5 +31,10 @@ void write_solution_ply(std::ostream& out, const Solution& solution, double expo
 /// Reads a PLY written by write_solution_ply. A missing or unreadable file, or one without the
 /// radiosity and patch properties, is an hrad::Error naming `path`.
 Solution read_solution_ply(const std::string& path);
+
+/// Throws hrad::Error naming `solution_path` when a face's patch id is not a patch of `scene`
+/// (read from `scene_path`): a solution of another scene.
+void check_solution_patches(const Solution& solution, const std::string& solution_path, const Scene& scene,
+                            const std::string& scene_path);
 
 }  // namespace hrad

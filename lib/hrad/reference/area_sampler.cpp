@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "hrad/reference/patch_plane.h"
+#include "hrad/geometry/patch_plane.h"
 
 namespace hrad::detail {
 

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "hrad/core/error.h"
-#include "hrad/reference/patch_plane.h"
+#include "hrad/geometry/patch_plane.h"
 
 namespace hrad {
 

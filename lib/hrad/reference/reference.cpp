@@ -16,10 +16,10 @@
 #include "hrad/core/progress.h"
 #include "hrad/core/rng.h"
 #include "hrad/core/stopwatch.h"
+#include "hrad/geometry/patch_plane.h"
 #include "hrad/reference/area_sampler.h"
 #include "hrad/reference/embree_scene.h"
 #include "hrad/reference/path_tracer.h"
-#include "hrad/reference/patch_plane.h"
 #include "hrad/reference/running_stats.h"
 
 namespace hrad {
@@ -32,12 +32,6 @@ std::uint64_t block_seed(std::uint64_t seed, std::uint64_t query, std::uint64_t 
   detail::Rng b(a.next() ^ query);
   detail::Rng c(b.next() ^ block);
   return c.next();
-}
-
-double scene_size(const Scene& scene) {
-  if (scene.patches.empty()) return 0.0;
-  const auto [lo, hi] = scene.bounds();
-  return std::max({(hi - lo).norm(), lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()});
 }
 
 // Runs `trace(query, block, rng, counts, stats)` for every block of every query in parallel and
@@ -123,25 +117,6 @@ void validate_reference_options(const ReferenceOptions& o) {
   if (o.max_depth < 0) throw Error(fmt::format("--max-depth must be >= 0 (0 = no limit), got {}", o.max_depth));
   if (o.roulette_depth < 1) throw Error(fmt::format("--roulette-depth must be >= 1, got {}", o.roulette_depth));
   if (o.threads < 0) throw Error(fmt::format("--threads must be >= 0 (0 = all cores), got {}", o.threads));
-}
-
-double probe_tolerance(const Scene& scene) { return 1e-6 * scene_size(scene); }
-
-int front_patch_at(const Scene& scene, const Vec3& x, const Vec3& normal, double tolerance) {
-  for (std::size_t pi = 0; pi < scene.patches.size(); ++pi) {
-    const Patch& p = scene.patches[pi];
-    if (normal.dot(p.normal) < 1.0 - 1e-6) continue;
-    if (std::abs(p.normal.dot(x) - detail::plane_offset(p)) > tolerance) continue;
-    bool inside = true;
-    for (std::size_t k = 0; k < p.vertices.size() && inside; ++k) {
-      const Vec3& a = p.vertices[k];
-      const Vec3 edge = p.vertices[(k + 1) % p.vertices.size()] - a;
-      // Counter-clockwise about the normal: inside is to the left of every edge.
-      inside = edge.cross(x - a).dot(p.normal) >= -tolerance * edge.norm();
-    }
-    if (inside) return static_cast<int>(pi);
-  }
-  return -1;
 }
 
 ReferenceSummary reference_points(const Scene& scene, std::span<const ProbePoint> points,

@@ -30,6 +30,7 @@
 #include "hrad/core/progress.h"
 #include "hrad/core/scene.h"
 #include "hrad/core/types.h"
+#include "hrad/geometry/front_patch.h"
 
 namespace hrad {
 
@@ -79,16 +80,6 @@ struct FaceEstimate {
 
 /// Throws hrad::Error naming the command-line option ("--samples must be >= 2, got 1").
 void validate_reference_options(const ReferenceOptions& options);
-
-/// The patch whose front `x` lies on: within `tolerance` of its plane, inside it (to the same
-/// tolerance), and `normal` within ~1.4 mrad of its front normal (cos >= 1 - 1e-6); the first such
-/// patch in scene order, or -1.
-int front_patch_at(const Scene& scene, const Vec3& x, const Vec3& normal, double tolerance);
-
-/// How far from a patch a probe point may be and still count as on it: 1e-6 of the scene's size
-/// (the larger of its bounding box's diagonal and its largest coordinate), so that coordinates
-/// printed with 7 significant digits stay on their patch.
-double probe_tolerance(const Scene& scene);
 
 /// Irradiance (and radiosity on patches) at each point. A point found on a patch's front
 /// (front_patch_at with probe_tolerance) is moved onto the patch's plane and faces its normal.

@@ -1,5 +1,5 @@
-// The plane every part of the reference puts a patch's points on: the patch's unit normal through
-// the mean of its vertices (a patch may leave its plane by 1e-7 of its size, io/obj_reader.h).
+// The plane a probe or a sample on a patch is put on: the patch's unit normal through the mean of
+// its vertices (a patch may leave its plane by 1e-7 of its size, io/obj_reader.h).
 #pragma once
 
 #include "hrad/core/scene.h"
