@@ -1,7 +1,6 @@
 // Hierarchical radiosity on the Cornell box: defaults, coarser and finer form-factor tolerances
-// and BF refinement; elements, links, leaf terms gathered per iteration (leaf_links) and kernel
-// calls as counters.
-//   build-x/bin/hierarchical_benchmark --benchmark_min_time=1
+// and BF refinement; the work each did (work_counters.h) as counters.
+//   build/bin/hierarchical_benchmark --benchmark_min_time=1
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -10,6 +9,7 @@
 #include "hrad/io/obj_reader.h"
 #include "hrad/solvers/hierarchical.h"
 #include "hrad/solvers/solve.h"
+#include "work_counters.h"
 
 namespace {
 
@@ -27,12 +27,7 @@ void run(benchmark::State& state, const hrad::SolveOptions& options) {
     summary = hrad::solve_hierarchical(scene, options, &solution);
     benchmark::DoNotOptimize(solution.face_radiosity.data());
   }
-  state.counters["elements"] = static_cast<double>(summary.elements);
-  state.counters["links"] = static_cast<double>(summary.links);
-  state.counters["kernel_calls"] = static_cast<double>(summary.form_factor_evaluations);
-  state.counters["visibility_queries"] = static_cast<double>(summary.visibility_queries);
-  state.counters["iterations"] = summary.iterations;
-  if (summary.figures.count("leaf_links") != 0) state.counters["leaf_links"] = summary.figures.at("leaf_links");
+  hrad::bench::add_work_counters(state, summary);
 }
 
 void BM_CornellDefaults(benchmark::State& state) { run(state, hrad::SolveOptions{}); }

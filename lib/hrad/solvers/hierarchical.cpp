@@ -105,13 +105,13 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
 
   std::vector<Candidate> work;
   if (tree) {
-    work.push_back({tree->root(), tree->root()});
+    work.push_back({.p = tree->root(), .q = tree->root()});
   } else {
     // HSA: every pair of input patches is refined once and its links are gathered both ways.
     const int n = static_cast<int>(scene.patches.size());
     work.reserve(static_cast<std::size_t>(n) * static_cast<std::size_t>(std::max(0, n - 1)) / 2);
     for (int i = 0; i < n; ++i)
-      for (int j = i + 1; j < n; ++j) work.push_back({h.root(i), h.root(j)});
+      for (int j = i + 1; j < n; ++j) work.push_back({.p = h.root(i), .q = h.root(j)});
   }
 
   const double bound = radiosity_bound(scene);
@@ -151,7 +151,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     // BF refinement: the tolerance depends on B, so refine again with the new radiosity (HSA sec. 4.2).
     if (t.bfeps <= 0.0 || passes >= kMaxRefinePasses) break;
     work.clear();
-    for (const Link& l : links) work.push_back({l.p, l.q});
+    for (const Link& l : links) work.push_back({.p = l.p, .q = l.q});
   }
 
   // Figures of the mesh and the links.

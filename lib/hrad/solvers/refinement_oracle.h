@@ -34,7 +34,7 @@ struct Candidate {
   /// has fully visible children, and a partly visible parent's occluders are the only candidates
   /// for its children (`occluders`; null = the whole scene).
   bool known_visible = false;
-  std::shared_ptr<const std::vector<int>> occluders;
+  std::shared_ptr<const std::vector<int>> occluders = nullptr;
   /// Split p whatever the pair's error (a re-refinement of shadowed receivers, refine.h).
   bool split_p = false;
 
@@ -42,7 +42,7 @@ struct Candidate {
   Decision decision = Decision::kDrop;
   /// What the pair's own classification found: children inherit it (when split).
   bool visible = false;
-  std::shared_ptr<const std::vector<int>> found_occluders;
+  std::shared_ptr<const std::vector<int>> found_occluders = nullptr;
   double f_pq = 0.0;
   double f_qp = 0.0;
   bool partial = false;  ///< linked with a visible fraction strictly between 0 and 1 (or sampled)
