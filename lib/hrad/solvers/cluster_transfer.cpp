@@ -70,7 +70,7 @@ double ClusterTransfer::projected_area(NodeRef r, const Vec3& d) const {
 int ClusterTransfer::sample(NodeRef r, double w, double u, double v, Vec3* point) const {
   if (is_cluster(r)) return tree_->sample(cluster_index(r), w, u, v, point);
   const ElementNode& e = h_.node(r);
-  *point = detail::PolygonSampler(e.polygon()).point(u, v);
+  *point = detail::polygon_point(e.polygon(), u, v);
   return e.patch;
 }
 

@@ -102,7 +102,7 @@ int ClusterTree::sample(int index, double w, double u, double v, Vec3* point) co
   int i = static_cast<int>(it - cumulative_area_.begin()) - 1;
   i = std::clamp(i, c.begin, c.end - 1);
   const int patch = order_[static_cast<std::size_t>(i)];
-  *point = detail::PolygonSampler(scene_.patches[static_cast<std::size_t>(patch)].vertices).point(u, v);
+  *point = detail::polygon_point(scene_.patches[static_cast<std::size_t>(patch)].vertices, u, v);
   return patch;
 }
 

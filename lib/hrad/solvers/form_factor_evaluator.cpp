@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <optional>
 #include <vector>
 #include <cassert>
 #include <numbers>
@@ -141,10 +142,12 @@ KernelVisibility FormFactorEvaluator::visibility_from_point(const Vec3& x, const
   detail::Rng rng(seed);
   thread_local std::vector<Vec2> uv;
   detail::stratified_unit_square(rays, rng, &uv);
-  const detail::PolygonSampler sampler(source);
+  // The refinement oracle asks one ray per point: then building the sampler costs more than the ray.
+  std::optional<detail::PolygonSampler> sampler;
+  if (uv.size() > 2) sampler.emplace(source);
   const Vec3 ny = scene_.patches[static_cast<std::size_t>(source_patch)].normal;
   for (const Vec2& s : uv) {
-    const Vec3 y = sampler.point(s.x(), s.y());
+    const Vec3 y = sampler ? sampler->point(s.x(), s.y()) : detail::polygon_point(source, s.x(), s.y());
     const double w = detail::point_pair_kernel(nx, ny, y - x);
     if (!(w > 0.0)) continue;  // a ray that carries no weight is not cast
     const bool blocked = occluders != nullptr ? visibility_->segment_blocked_among(x, patch_x, y, source_patch, *occluders)

@@ -29,6 +29,11 @@ class PolygonSampler {
   double area_ = 0.0;
 };
 
+/// PolygonSampler(polygon).point(u, v), the same bits, without building the sampler: for one point
+/// per polygon (a cluster's surfaces sampled by area), where the sampler's two allocations cost
+/// more than the point.
+Vec3 polygon_point(std::span<const Vec3> polygon, double u, double v);
+
 /// `n` points in [0, 1)^2, stratified: n distinct cells of a ceil(sqrt n)^2 grid chosen at random,
 /// one uniform point in each. Every point is uniform on the square, so estimates stay unbiased.
 void stratified_unit_square(int n, Rng& rng, std::vector<Vec2>* out);
