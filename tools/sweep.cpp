@@ -9,7 +9,10 @@
 // most 4096 elements unless --reference-elements, final-gathered at the error samples) on fixed
 // samples on every surface. Writes:
 //   DIR/sweep.csv       one row per run: method, parameter, value, elements, links,
-//                       form_factor_evaluations, visibility_queries, seconds, error_l2, error_linf, ...
+//                       form_factor_evaluations, visibility_queries, seconds, error_l2, error_linf, ...,
+//                       and error_l2_gathered, error_linf_gathered: the run's own final gather at the
+//                       samples (what a gathered image or probe shows) with its cost, gather_seconds
+//                       and gather_work (point factors, classifications, rays), not in seconds
 //   DIR/reference.json  how the reference was made
 //   DIR/reference_samples.json  the reference's final gather at the error samples; --reference-from
 //                       DIR reads it back (with reference.json) instead of solving the reference again
@@ -18,8 +21,11 @@
 //                       and the full/hierarchical ratio
 //   DIR/pareto.png      error against time, log-log, the three methods
 //   DIR/command.txt     the command that made them
-// --quick runs 3 small settings per parameter (for tests). Progress goes to stderr.
+// --quick runs 3 small settings per parameter (for tests). --no-gather skips the runs' gathers
+// (gathered columns nan); --gather-tolerance T sets their Barnes-Hut tolerance (default 1e-2,
+// lib/hrad/gather/leaf_gather.h). Progress goes to stderr.
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -63,6 +69,8 @@ void add_sweep_command(CLI::App& app) {
     int samples = 256, threads = 0;
     std::string elements, patches, feps, aeps, reference_from, push = "hsa";
     int visibility_samples = 0;
+    bool no_gather = false;
+    double gather_tolerance = 1e-2;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("SCENE", args->scene, "Scene file (.obj)")->required();
@@ -84,7 +92,13 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--push", args->push, "Hierarchical link operators to run, comma-separated: hsa, leaf (default hsa)");
   cmd->add_option("--visibility-samples", args->visibility_samples,
                   "Point pairs per partly visible pair in every run (default: the solvers'); the reference uses 4x");
+  cmd->add_flag("--no-gather", args->no_gather, "Do not final-gather the runs (error_l2_gathered is nan)");
+  cmd->add_option("--gather-tolerance", args->gather_tolerance,
+                  "Barnes-Hut tolerance of the runs' final gather, relative to the mean radiosity (default 1e-2)");
   cmd->callback([args, cmd] {
+    if (!(args->gather_tolerance >= 0.0 && std::isfinite(args->gather_tolerance)))
+      throw Error(fmt::format("--gather-tolerance: {} is not a finite number >= 0", args->gather_tolerance));
+    if (args->no_gather && cmd->count("--gather-tolerance")) throw Error("--gather-tolerance: not with --no-gather");
     if (!(args->samples >= 1 && args->samples <= 1'000'000)) throw Error(fmt::format("--samples must be in [1, 1e6], got {}", args->samples));
     if (!(args->target_error > 0 && args->target_error < 1)) throw Error(fmt::format("--target-error must be in (0, 1), got {}", args->target_error));
     if (!(args->reference_elements >= 0 && args->reference_elements <= 1e6))
@@ -136,6 +150,8 @@ void add_sweep_command(CLI::App& app) {
     if (!feps.empty()) options.feps_values = feps;
     if (!aeps.empty()) options.aeps_fractions = aeps;
     options.visibility_samples = args->visibility_samples;
+    options.gather_runs = !args->no_gather;
+    options.gather_tolerance = args->gather_tolerance;
     if (!(args->feps_aeps >= 0.0 && args->feps_aeps < 1.0))
       throw Error(fmt::format("--feps-aeps must be in [0, 1), got {}", args->feps_aeps));
     options.feps_aeps_fraction = args->feps_aeps;
@@ -178,14 +194,17 @@ void add_sweep_command(CLI::App& app) {
                                        {"--feps", args->feps}, {"--aeps", args->aeps}})
         if (!text.empty()) o << " " << name << " " << text;
       if (args->visibility_samples > 0) o << " --visibility-samples " << args->visibility_samples;
+      if (args->no_gather) o << " --no-gather";
+      if (cmd->count("--gather-tolerance")) o << " --gather-tolerance " << args->gather_tolerance;
       o << "\n";
     });
     run_plot("pareto.py", {dir + "/sweep.csv", dir + "/pareto.png", "What accuracy costs in time: " + scene.path});
 
     outputs.commit();
     std::cout << fmt::format("{} runs; wrote {}/sweep.csv, reference.json, fit.json, pareto.png\n", rows.size(), dir);
-    for (const char* key : {"speedup", "speedup_smooth", "speedup_at_common_error", "speedup_at_common_error_smooth",
-                            "speedup_extrapolated", "speedup_extrapolated_smooth"})
+    for (const char* key : {"speedup", "speedup_smooth", "speedup_gathered", "speedup_at_common_error",
+                            "speedup_at_common_error_smooth", "speedup_at_common_error_gathered", "speedup_extrapolated",
+                            "speedup_extrapolated_smooth", "speedup_extrapolated_gathered"})
       if (fits.contains(key)) std::cout << key << ": " << fits[key].dump() << "\n";
   });
 }

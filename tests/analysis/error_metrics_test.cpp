@@ -162,6 +162,29 @@ TEST(ErrorMetrics, ConstantOffsetGivesItsRelativeNorm) {
   EXPECT_NEAR(m.relative_linf, expected, 1e-12);
 }
 
+// Values known only at the samples (a final gather there): a constant offset on one of two patches
+// gives its area-weighted relative norm over the whole, the offset patch its own relative norm, the
+// other 0; the largest sample error over the largest reference value is the Linf error.
+TEST(ErrorMetrics, ValuesAtSamplesGiveTheirAreaWeightedNorm) {
+  Scene scene = unit_square_scene();
+  scene.patches.push_back(make_patch({Vec3(2, 0, 0), Vec3(5, 0, 0), Vec3(5, 1, 0), Vec3(2, 1, 0)}));  // area 3
+  const std::vector<SurfaceSample> samples = patch_samples(scene, 16);
+  const Rgb ref(0.2, 0.5, 0.7), offset(0.1, -0.2, 0.3);
+  std::vector<Rgb> values, reference;
+  for (const SurfaceSample& x : samples) {
+    reference.push_back(ref);
+    values.push_back(x.patch == 1 ? ref + offset : ref);
+  }
+  const ErrorMetrics m = compare_at_samples(scene, samples, values, reference);
+  const double patch = std::sqrt(0.01 + 0.04 + 0.09) / std::sqrt(0.04 + 0.25 + 0.49);
+  EXPECT_NEAR(m.relative_l2, patch * std::sqrt(3.0 / 4.0), 1e-12);
+  EXPECT_NEAR(m.relative_linf, patch, 1e-12);
+  EXPECT_EQ(m.patch_relative_l2[0], 0.0);
+  EXPECT_NEAR(m.patch_relative_l2[1], patch, 1e-12);
+  EXPECT_EQ(m.samples, samples.size());
+  EXPECT_TRUE(m.face_relative_l2.empty());
+}
+
 TEST(ErrorMetrics, EmittersCanBeLeftOut) {
   // Patch 0 (emitting) is 10% off everywhere, patch 1 (plain) exact: only the former counts.
   Scene scene = unit_square_scene();

@@ -105,16 +105,21 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   std::getline(csv, line);
   EXPECT_EQ(line,
             "method,parameter,value,elements,links,form_factor_evaluations,visibility_queries,seconds,error_l2,error_linf,"
-            "iterations,termination,error_l2_smooth,error_linf_smooth");
+            "iterations,termination,error_l2_smooth,error_linf_smooth,error_l2_gathered,error_linf_gathered,"
+            "gather_seconds,gather_work");
   struct Row {
     std::string method, parameter;
-    double elements, links, error_l2, error_l2_smooth;
+    double elements, links, error_l2, error_l2_smooth, error_l2_gathered;
   };
   std::vector<Row> rows;
   while (std::getline(csv, line)) {
     const std::vector<std::string> cells = csv_cells(line);
-    ASSERT_EQ(cells.size(), 14u) << line;
-    rows.push_back({cells[0], cells[1], std::stod(cells[3]), std::stod(cells[4]), std::stod(cells[8]), std::stod(cells[12])});
+    ASSERT_EQ(cells.size(), 18u) << line;
+    rows.push_back({cells[0], cells[1], std::stod(cells[3]), std::stod(cells[4]), std::stod(cells[8]), std::stod(cells[12]),
+                    std::stod(cells[14])});
+    EXPECT_GT(rows.back().error_l2_gathered, 0.0) << line;  // measured (not nan) for every run
+    EXPECT_LT(rows.back().error_l2_gathered, 1.0) << line;
+    EXPECT_GT(std::stod(cells[17]), 0.0) << line;  // the gather's work
     EXPECT_GT(rows.back().error_l2, 0.0) << line;
     EXPECT_LT(rows.back().error_l2, 1.0) << line;
   }
@@ -175,13 +180,15 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   for (const std::string prefix : {"full,max_area,", "hierarchical,feps,0.3,", "hierarchical,aeps,"}) {
     const std::string a = row_of(second, prefix);
     ASSERT_FALSE(a.empty()) << prefix;
-    // The same setting in the first sweep: the same value, hence the same row but for the seconds.
+    // The same setting in the first sweep: the same value, hence the same row but for the seconds
+    // (the solve's and the gather's).
     const std::string value = a.substr(0, a.find(',', prefix.size()));
     const std::string b = row_of(first, value + ",");
     ASSERT_FALSE(b.empty()) << value;
     auto without_seconds = [](const std::string& line) {
       std::vector<std::string> cells = csv_cells(line);
-      cells.erase(cells.begin() + 7);
+      cells.erase(cells.begin() + 16);  // gather_seconds
+      cells.erase(cells.begin() + 7);   // seconds
       return cells;
     };
     EXPECT_EQ(without_seconds(a), without_seconds(b)) << a << "\n" << b;

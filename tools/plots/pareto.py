@@ -1,20 +1,25 @@
 """Error against time, log-log, one curve per method and parameter: `pareto.py SWEEP.csv OUT.png TITLE`.
 
-Left: the error of the constant element radiosity (the unknowns); right, when the sweep measured it
-(column error_l2_smooth), the error of the displayed field (vertex radiosity interpolated linearly)."""
+Left: the error of the constant element radiosity (the unknowns); then, when the sweep measured them,
+the error of the displayed field (column error_l2_smooth: vertex radiosity interpolated linearly) and
+of the run's own final gather at the samples (column error_l2_gathered, against the time of the solve
+and the gather, gather_seconds)."""
+import math
 import sys
 
 from common import COLORS, plt, read_csv, save
 
 rows = read_csv(sys.argv[1])
-fields = [("error_l2", "constant element radiosity")]
+fields = [("error_l2", "constant element radiosity", False)]
 if rows and "error_l2_smooth" in rows[0]:
-    fields.append(("error_l2_smooth", "displayed (interpolated) radiosity"))
+    fields.append(("error_l2_smooth", "displayed (interpolated) radiosity", False))
+if rows and "error_l2_gathered" in rows[0] and any(not math.isnan(r["error_l2_gathered"]) for r in rows):
+    fields.append(("error_l2_gathered", "final gather of the run (solve + gather time)", True))
 fig, axes = plt.subplots(1, len(fields), figsize=(7 * len(fields), 5), squeeze=False, sharey=True)
-for ax, (column, name) in zip(axes[0], fields):
+for ax, (column, name, gathered) in zip(axes[0], fields):
     for method in ("full", "substructure", "hierarchical"):
         for parameter, marker in (("max_area", "o"), ("patch_area", "s"), ("feps", "o"), ("aeps", "^")):
-            pts = sorted((r["seconds"], r[column]) for r in rows
+            pts = sorted((r["seconds"] + (r["gather_seconds"] if gathered else 0.0), r[column]) for r in rows
                          if r["method"] == method and r["parameter"] == parameter and r[column] > 0)
             if not pts:
                 continue

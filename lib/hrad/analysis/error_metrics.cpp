@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "hrad/core/rng.h"
 #include "hrad/render/face_geometry.h"
@@ -245,6 +246,33 @@ ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
     }
     m.face_relative_l2[f] = std::sqrt(ratio(face_err[f], face_ref[f]));
   }
+  return m;
+}
+
+ErrorMetrics compare_at_samples(const Scene& scene, std::span<const SurfaceSample> samples, std::span<const Rgb> values,
+                                std::span<const Rgb> reference) {
+  if (values.size() != samples.size() || reference.size() != samples.size())
+    throw std::invalid_argument("compare_at_samples: the values and the reference must have one entry per sample");
+  ErrorMetrics m;
+  m.samples = samples.size();
+  std::vector<double> patch_err(scene.patches.size(), 0.0), patch_ref(scene.patches.size(), 0.0);
+  double err = 0.0, ref = 0.0, area = 0.0, max_err = 0.0, max_ref = 0.0;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const SurfaceSample& s = samples[k];
+    const double e2 = (values[k] - reference[k]).matrix().squaredNorm(), r2 = reference[k].matrix().squaredNorm();
+    err += s.area * e2;
+    ref += s.area * r2;
+    area += s.area;
+    max_err = std::max(max_err, std::sqrt(e2));
+    max_ref = std::max(max_ref, std::sqrt(r2));
+    patch_err[static_cast<std::size_t>(s.patch)] += s.area * e2;
+    patch_ref[static_cast<std::size_t>(s.patch)] += s.area * r2;
+  }
+  m.relative_l2 = std::sqrt(ratio(err, ref));
+  m.relative_linf = ratio(max_err, max_ref);
+  m.rms_absolute = area > 0.0 ? std::sqrt(err / area) : 0.0;
+  m.patch_relative_l2.resize(scene.patches.size());
+  for (std::size_t p = 0; p < scene.patches.size(); ++p) m.patch_relative_l2[p] = std::sqrt(ratio(patch_err[p], patch_ref[p]));
   return m;
 }
 

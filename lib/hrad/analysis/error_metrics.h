@@ -39,6 +39,7 @@
 #pragma once
 
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "hrad/core/scene.h"
@@ -85,6 +86,12 @@ ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
                                  const std::function<Rgb(const Vec3&, int)>& reference, int samples_per_patch = 256,
                                  Emitters emitters = Emitters::include, Field field = Field::constant,
                                  SampleLayout layout = SampleLayout::jittered);
+
+/// Error of values known only at the samples (`values[k]` at `samples[k]`, e.g. a final gather of a
+/// solution there) against `reference[k]` at the same samples: relative_l2, relative_linf,
+/// rms_absolute and patch_relative_l2 as above (face_relative_l2 is empty: no mesh).
+ErrorMetrics compare_at_samples(const Scene& scene, std::span<const SurfaceSample> samples, std::span<const Rgb> values,
+                                std::span<const Rgb> reference);
 
 /// Looks up a Solution's radiosity at points of given patches (see above).
 class SolutionSampler {

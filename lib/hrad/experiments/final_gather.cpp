@@ -9,12 +9,13 @@
 namespace hrad {
 
 std::vector<Rgb> final_gather_reflected(const Scene& scene, const Solution& solution,
-                                        std::span<const SurfaceSample> points, const FinalGatherOptions& options) {
+                                        std::span<const SurfaceSample> points, const FinalGatherOptions& options,
+                                        GatherWork* work) {
   std::unique_ptr<tbb::global_control> limit;
   if (options.threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, options.threads);
   LeafGatherOptions o;
-  o.tolerance = 0.0;  // every leaf on its own: the reference
+  o.tolerance = options.tolerance;
   o.partial = PartialVisibility::per_node;
   o.visibility_samples = options.visibility_samples;
   o.classify_points = true;
@@ -32,6 +33,7 @@ std::vector<Rgb> final_gather_reflected(const Scene& scene, const Solution& solu
   for (std::size_t i = 0; i < points.size(); ++i)
     h[i] *= scene.material_of(scene.patches[static_cast<std::size_t>(points[i].patch)]).reflectance;
   if (options.progress) options.progress(points.size(), points.size());
+  if (work) *work = gather.work();
   return h;
 }
 

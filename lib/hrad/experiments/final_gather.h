@@ -18,10 +18,14 @@
 #include "hrad/analysis/error_metrics.h"
 #include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
+#include "hrad/gather/final_gather.h"
 
 namespace hrad {
 
 struct FinalGatherOptions {
+  /// Barnes-Hut tolerance of the gather (gather/leaf_gather.h); 0, every leaf on its own, for a
+  /// reference.
+  double tolerance = 0.0;
   /// Stratified points per leaf when the leaf is partly visible from x; leaves classified fully
   /// visible or hidden from x need none.
   int visibility_samples = 64;
@@ -31,8 +35,10 @@ struct FinalGatherOptions {
 };
 
 /// The reflected radiosity B(x) - E(x) at each point (samples on the scene's patches), gathered
-/// from `solution`'s leaves (their face_radiosity, emission included). Deterministic.
+/// from `solution`'s leaves (their face_radiosity, emission included). Deterministic. `work`, when
+/// given, receives the gather's work.
 std::vector<Rgb> final_gather_reflected(const Scene& scene, const Solution& solution,
-                                        std::span<const SurfaceSample> points, const FinalGatherOptions& options);
+                                        std::span<const SurfaceSample> points, const FinalGatherOptions& options,
+                                        GatherWork* work = nullptr);
 
 }  // namespace hrad

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <unordered_map>
 #include <set>
@@ -196,6 +197,9 @@ ErrorMetrics judge(const Scene& scene, const Solution& run, const Reference& ref
 std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, const SweepOptions& options) {
   const auto settings = sweep_settings(scene, options);
   const GatheredLookup lookup = gathered_lookup(scene, reference, options.samples_per_patch);
+  const bool gather_runs = options.gather_runs && !reference.gathered.empty();
+  const std::vector<SurfaceSample> samples =
+      gather_runs ? patch_samples(scene, options.samples_per_patch) : std::vector<SurfaceSample>{};
   std::vector<SweepRow> rows;
   int done = 0;
   for (const auto& [method, setting] : settings) {
@@ -213,10 +217,24 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
                          fmt::format("skipped {} {}={:.4g}: {}", to_string(method), setting.parameter, setting.value, e.what()));
       continue;
     }
+    SweepRow row;
+    if (gather_runs) {
+      FinalGatherOptions g;
+      g.tolerance = options.gather_tolerance;
+      g.threads = options.threads;
+      if (options.visibility_samples > 0) g.visibility_samples = options.visibility_samples;
+      GatherWork work;
+      const Stopwatch watch;
+      const std::vector<Rgb> gathered = final_gather_reflected(scene, solution, samples, g, &work);
+      row.gather_seconds = watch.seconds();
+      row.gather_work = work.total();
+      const ErrorMetrics m = compare_at_samples(scene, samples, gathered, reference.gathered);
+      row.error_l2_gathered = m.relative_l2;
+      row.error_linf_gathered = m.relative_linf;
+    }
     const Solution reflected = reflected_part(scene, std::move(solution));
     const ErrorMetrics e = judge(scene, reflected, reference, lookup, options.samples_per_patch, Field::constant);
     const ErrorMetrics smooth = judge(scene, reflected, reference, lookup, options.samples_per_patch, Field::interpolated);
-    SweepRow row;
     row.method = std::string(to_string(method));
     if (method == Method::kHierarchical && setting.options.push == Push::kLeaf) row.method += "_leaf";
     row.parameter = setting.parameter;
@@ -248,8 +266,8 @@ nlohmann::json fit_json(const PowerLawFit& fit) {
 namespace {
 
 // Fits y ~ a x^b over rows, or null when fewer than 3 distinct positive x (no standard error then).
-nlohmann::json maybe_fit(const std::vector<const SweepRow*>& rows, double (*x_of)(const SweepRow&),
-                         double (*y_of)(const SweepRow&)) {
+nlohmann::json maybe_fit(const std::vector<const SweepRow*>& rows, const std::function<double(const SweepRow&)>& x_of,
+                         const std::function<double(const SweepRow&)>& y_of) {
   std::vector<double> x, y;
   std::set<double> distinct;
   for (const SweepRow* r : rows) {
@@ -264,35 +282,64 @@ nlohmann::json maybe_fit(const std::vector<const SweepRow*>& rows, double (*x_of
   return fit_json(fit_power_law(x, y));
 }
 
+double solve_seconds(const SweepRow& r) { return r.seconds; }
+
+// A field's time: the solve's, and for the gathered field the gather's on top.
+double solve_and_gather_seconds(const SweepRow& r) { return r.seconds + r.gather_seconds; }
+
+// The fields a sweep measures: name suffix, description, error column, time.
+struct SweepField {
+  const char* suffix;
+  const char* description;
+  double SweepRow::*error;
+  double (*seconds)(const SweepRow&);
+};
+constexpr SweepField kFields[] = {
+    {"", "constant element radiosity", &SweepRow::error_l2, &solve_seconds},
+    {"_smooth", "interpolated vertex radiosity (as displayed)", &SweepRow::error_l2_smooth, &solve_seconds},
+    {"_gathered", "final gather of the solution at the samples (time: solve and gather)", &SweepRow::error_l2_gathered,
+     &solve_and_gather_seconds},
+};
+
 // Seconds a method needs to reach `target` relative L2 error: the fastest run at or below the target
-// (measured), and a log-log interpolation between it and the slower-error run just before it.
-nlohmann::json time_to_error(const std::vector<const SweepRow*>& rows, double target, double SweepRow::*error) {
+// (measured), and a log-log interpolation between it and the slower-error run just before it. Rows
+// that did not measure the field (nan) are left out.
+nlohmann::json time_to_error(const std::vector<const SweepRow*>& all_rows, double target, double SweepRow::*error,
+                             double (*seconds_of)(const SweepRow&) = &solve_seconds) {
+  std::vector<const SweepRow*> rows;  // the runs that measured this field
+  for (const SweepRow* r : all_rows)
+    if (std::isfinite(r->*error)) rows.push_back(r);
+  nlohmann::json j;
+  j["target_error_l2"] = target;
+  if (rows.empty()) {
+    j["reached"] = false;
+    j["note"] = "not measured";
+    return j;
+  }
   std::vector<const SweepRow*> by_time = rows;
-  std::sort(by_time.begin(), by_time.end(), [](auto* a, auto* b) { return a->seconds < b->seconds; });
+  std::sort(by_time.begin(), by_time.end(), [&](auto* a, auto* b) { return seconds_of(*a) < seconds_of(*b); });
   const SweepRow* first = nullptr;
   std::size_t k = 0;
   for (; k < by_time.size(); ++k)
     if (by_time[k]->*error <= target) { first = by_time[k]; break; }
-  nlohmann::json j;
-  j["target_error_l2"] = target;
   if (!first) {
     const SweepRow* best = *std::min_element(rows.begin(), rows.end(),
                                              [&](auto* a, auto* b) { return a->*error < b->*error; });
     j["reached"] = false;
     j["best_error_l2"] = best->*error;
-    j["slowest_seconds"] = by_time.back()->seconds;
+    j["slowest_seconds"] = seconds_of(*by_time.back());
     return j;
   }
   j["reached"] = true;
-  j["measured_seconds"] = first->seconds;
+  j["measured_seconds"] = seconds_of(*first);
   j["run"] = {{"parameter", first->parameter}, {"value", first->value}, {"error_l2", first->*error}};
-  double interpolated = first->seconds;
+  double interpolated = seconds_of(*first);
   // The latest faster run that missed the target brackets it from above in error.
   for (std::size_t i = k; i-- > 0;) {
     const SweepRow* prev = by_time[i];
-    if (prev->*error > target && prev->seconds > 0 && first->seconds > prev->seconds) {
+    if (prev->*error > target && seconds_of(*prev) > 0 && seconds_of(*first) > seconds_of(*prev)) {
       const double t = std::log(target / prev->*error) / std::log(first->*error / prev->*error);
-      interpolated = std::exp(std::log(prev->seconds) + t * std::log(first->seconds / prev->seconds));
+      interpolated = std::exp(std::log(seconds_of(*prev)) + t * std::log(seconds_of(*first) / seconds_of(*prev)));
       break;
     }
   }
@@ -316,8 +363,8 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
     m["time_vs_elements"] = maybe_fit(size_runs[method], +elements, +[](const SweepRow& r) { return r.seconds; });
     m["links_vs_elements"] =
         maybe_fit(size_runs[method], +elements, +[](const SweepRow& r) { return double(r.links); });
-    m["time_to_target_error"] = time_to_error(list, target_error, &SweepRow::error_l2);
-    m["time_to_target_error_smooth"] = time_to_error(list, target_error, &SweepRow::error_l2_smooth);
+    for (const SweepField& f : kFields)
+      m[std::string("time_to_target_error") + f.suffix] = time_to_error(list, target_error, f.error, f.seconds);
     j["methods"][method] = std::move(m);
   }
   if (by_method.count("hierarchical")) {
@@ -330,11 +377,13 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
   // The headline: how much faster hierarchical radiosity reaches the target error than the full matrix.
   const auto& methods = j["methods"];
   if (!methods.contains("full") || !methods.contains("hierarchical")) return j;
-  for (const char* field : {"", "_smooth"}) {
+  for (const SweepField& fd : kFields) {
+    const char* field = fd.suffix;
     const auto& full = methods["full"][std::string("time_to_target_error") + field];
     const auto& hr = methods["hierarchical"][std::string("time_to_target_error") + field];
+    if (full.contains("note") || hr.contains("note")) continue;  // a field these rows did not measure
     nlohmann::json s;
-    s["field"] = *field ? "interpolated vertex radiosity (as displayed)" : "constant element radiosity";
+    s["field"] = fd.description;
     s["target_error_l2"] = target_error;
     if (hr["reached"] && full["reached"]) {
       s["full_over_hierarchical_measured"] = full["measured_seconds"].get<double>() / hr["measured_seconds"].get<double>();
@@ -351,9 +400,8 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
     const double common = std::max(full.contains("best_error_l2") ? full["best_error_l2"].get<double>() : 0.0,
                                    hr.contains("best_error_l2") ? hr["best_error_l2"].get<double>() : 0.0);
     if (common > target_error) {
-      double SweepRow::*error = *field ? &SweepRow::error_l2_smooth : &SweepRow::error_l2;
-      const nlohmann::json f = time_to_error(by_method["full"], common, error),
-                           h = time_to_error(by_method["hierarchical"], common, error);
+      const nlohmann::json f = time_to_error(by_method["full"], common, fd.error, fd.seconds),
+                           h = time_to_error(by_method["hierarchical"], common, fd.error, fd.seconds);
       nlohmann::json c;
       c["error_l2"] = common;
       c["full_seconds"] = f["interpolated_seconds"];
@@ -366,7 +414,9 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
   // Beyond the runs: where neither reached the target, the fits' estimate of each method's time to
   // it, error ~ k n^-g and seconds ~ a n^b over the runs that vary the element count (max_area for
   // the full matrix, aeps for HR): n* = (k / target)^(1/g), time a n*^b. An extrapolation, labelled.
-  for (const char* field : {"", "_smooth"}) {
+  for (const SweepField& fd : kFields) {
+    const char* field = fd.suffix;
+    if (!j.contains(std::string("speedup") + field)) continue;
     if (j[std::string("speedup") + field].contains("full_over_hierarchical_measured")) continue;
     nlohmann::json x;
     x["note"] = "extrapolated from power-law fits beyond the sweep's runs, not measured";
@@ -376,9 +426,8 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
       std::vector<const SweepRow*> runs;
       for (const SweepRow* r : by_method[method])
         if (r->parameter == (std::string(method) == "full" ? "max_area" : "aeps")) runs.push_back(r);
-      const nlohmann::json err = *field ? maybe_fit(runs, +elements, +[](const SweepRow& r) { return r.error_l2_smooth; })
-                                        : maybe_fit(runs, +elements, +[](const SweepRow& r) { return r.error_l2; });
-      const nlohmann::json time = maybe_fit(runs, +elements, +[](const SweepRow& r) { return r.seconds; });
+      const nlohmann::json err = maybe_fit(runs, elements, [&](const SweepRow& r) { return r.*fd.error; });
+      const nlohmann::json time = maybe_fit(runs, elements, fd.seconds);
       if (err.is_null() || time.is_null() || !(err["b"].get<double>() < 0.0)) {
         both = false;
         break;
@@ -397,11 +446,14 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
 std::string sweep_csv(const std::vector<SweepRow>& rows) {
   std::string out =
       "method,parameter,value,elements,links,form_factor_evaluations,visibility_queries,seconds,error_l2,error_linf,"
-      "iterations,termination,error_l2_smooth,error_linf_smooth\n";
+      "iterations,termination,error_l2_smooth,error_linf_smooth,error_l2_gathered,error_linf_gathered,gather_seconds,"
+      "gather_work\n";
   for (const SweepRow& r : rows)
-    out += fmt::format("{},{},{:.9g},{},{},{},{},{:.6g},{:.9g},{:.9g},{},{},{:.9g},{:.9g}\n", r.method, r.parameter,
-                       r.value, r.elements, r.links, r.form_factor_evaluations, r.visibility_queries, r.seconds,
-                       r.error_l2, r.error_linf, r.iterations, r.termination, r.error_l2_smooth, r.error_linf_smooth);
+    out += fmt::format("{},{},{:.9g},{},{},{},{},{:.6g},{:.9g},{:.9g},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.6g},{}\n",
+                       r.method, r.parameter, r.value, r.elements, r.links, r.form_factor_evaluations,
+                       r.visibility_queries, r.seconds, r.error_l2, r.error_linf, r.iterations, r.termination,
+                       r.error_l2_smooth, r.error_linf_smooth, r.error_l2_gathered, r.error_linf_gathered,
+                       r.gather_seconds, r.gather_work);
   return out;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,6 +32,13 @@ struct SweepRow {
   double seconds = 0.0;
   double error_l2 = 0.0, error_linf = 0.0;                ///< the constant element field (the unknowns)
   double error_l2_smooth = 0.0, error_linf_smooth = 0.0;  ///< the displayed, vertex-interpolated field
+  /// The run's solution final-gathered at the error samples (B - E = rho H from its leaves,
+  /// gather/leaf_gather.h), what a gathered image or a probe shows, against the reference's gather
+  /// at the same samples. NaN where not measured (no gathered reference, or SweepOptions::gather_runs off).
+  double error_l2_gathered = std::numeric_limits<double>::quiet_NaN();
+  double error_linf_gathered = std::numeric_limits<double>::quiet_NaN();
+  double gather_seconds = 0.0;    ///< the gather's own time (quadtrees and points), not in `seconds`
+  std::uint64_t gather_work = 0;  ///< its point factors, visibility classifications and rays (GatherWork::total)
   int iterations = 0;
   std::string termination;
   std::vector<double> change_per_iteration;
@@ -87,6 +95,11 @@ struct SweepOptions {
   /// Judge runs against the reference solution's final gather at the samples
   /// (experiments/final_gather.h) instead of its own field.
   bool final_gather = true;
+  /// Also final-gather every run at the samples (SweepRow::error_l2_gathered), when the reference is
+  /// gathered; the gather's Barnes-Hut tolerance (gather/leaf_gather.h) and, per partly visible
+  /// leaf, the runs' visibility samples (64 when visibility_samples is 0).
+  bool gather_runs = true;
+  double gather_tolerance = 1e-2;
   int threads = 0;
   /// Progress: (runs done, runs in all, what runs now).
   std::function<void(int, int, std::string_view)> progress;
@@ -115,11 +128,14 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
 /// `target_error` (log-log interpolation between the bracketing runs, or "not reached"), and the
 /// full/hierarchical ratios ("speedup", "speedup_smooth"); where the runs do not bracket the target,
 /// the ratio at the lowest error both reached ("speedup_at_common_error[_smooth]") and the fits'
-/// extrapolation to the target, labelled as such ("speedup_extrapolated[_smooth]").
+/// extrapolation to the target, labelled as such ("speedup_extrapolated[_smooth]"). The gathered
+/// field ("_gathered": error_l2_gathered, the time seconds + gather_seconds) is fitted the same way
+/// where the rows measured it.
 nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error = 0.01);
 
 /// The rows as CSV (header: method,parameter,value,elements,links,form_factor_evaluations,
-/// visibility_queries,seconds,error_l2,error_linf,iterations,termination,error_l2_smooth,error_linf_smooth).
+/// visibility_queries,seconds,error_l2,error_linf,iterations,termination,error_l2_smooth,error_linf_smooth,
+/// error_l2_gathered,error_linf_gathered,gather_seconds,gather_work).
 std::string sweep_csv(const std::vector<SweepRow>& rows);
 
 nlohmann::json fit_json(const PowerLawFit& fit);
