@@ -21,6 +21,8 @@ ClusterTree::ClusterTree(const Scene& scene) : scene_(scene) {
   patch_parent_.assign(static_cast<std::size_t>(n), -1);
   clusters_.reserve(static_cast<std::size_t>(std::max(0, n - 1)));
   root_ = build(0, n, -1, centroids);
+  samplers_.reserve(static_cast<std::size_t>(n));
+  for (const Patch& patch : scene.patches) samplers_.emplace_back(patch.vertices);
   cumulative_area_.resize(static_cast<std::size_t>(n) + 1, 0.0);
   for (int i = 0; i < n; ++i)
     cumulative_area_[static_cast<std::size_t>(i) + 1] =
@@ -102,7 +104,7 @@ int ClusterTree::sample(int index, double w, double u, double v, Vec3* point) co
   int i = static_cast<int>(it - cumulative_area_.begin()) - 1;
   i = std::clamp(i, c.begin, c.end - 1);
   const int patch = order_[static_cast<std::size_t>(i)];
-  *point = detail::polygon_point(scene_.patches[static_cast<std::size_t>(patch)].vertices, u, v);
+  *point = samplers_[static_cast<std::size_t>(patch)].point(u, v);
   return patch;
 }
 

@@ -13,6 +13,7 @@
 #include "hrad/core/scene.h"
 #include "hrad/core/types.h"
 #include "hrad/mesh/element_hierarchy.h"
+#include "hrad/visibility/sampling.h"
 
 namespace hrad {
 
@@ -69,6 +70,7 @@ class ClusterTree {
   std::vector<int> order_;             ///< patches, grouped by cluster ranges
   std::vector<double> cumulative_area_;  ///< prefix sums of area along order_ (size + 1)
   std::vector<int> patch_parent_;
+  std::vector<detail::PolygonSampler> samplers_;  ///< one per patch: sample() draws millions of points
   NodeRef root_ = kNoNode;
 };
 

@@ -399,6 +399,42 @@ bool CgalVisibility::segment_blocked_among(const Vec3& a, int patch_a, const Vec
   return false;
 }
 
+// The shaft's bounding planes in doubles, for culling boxes before any exact test (Haines &
+// Wallace 1994, shaft culling): a box all of whose points lie on the outer side of one plane, by
+// more than a slack many orders above the rounding of the plane's arithmetic, cannot meet the
+// shaft. The shaft's box alone lets a long diagonal shaft (across a city) visit most of the scene.
+class ShaftPlanes {
+ public:
+  ShaftPlanes(std::span<const Facet> facets, double scene_magnitude) {
+    for (const Facet& f : facets) {
+      const Vec3 p(f.p.x(), f.p.y(), f.p.z());
+      const Vec3 u = Vec3(f.q.x(), f.q.y(), f.q.z()) - p, v = Vec3(f.r.x(), f.r.y(), f.r.z()) - p;
+      const Vec3 n = u.cross(v);  // CGAL::orientation(p, q, r, x) is the sign of n . (x - p)
+      // |n . (x - p)| <= |u| |v| |x - p| with |x - p| <= 2 (scene magnitude) for x in the scene;
+      // the slack is 2^-30 of that bound, the arithmetic's error a few 2^-52.
+      const double bound = u.cwiseAbs().sum() * v.cwiseAbs().sum() * 4.0 * scene_magnitude;
+      planes_.push_back({n, n.dot(p), std::ldexp(bound, -30) + std::numeric_limits<double>::min()});
+    }
+  }
+  /// True only when the box lies strictly outside the shaft: every one of its points on the
+  /// negative side of some plane.
+  bool outside(const CGAL::Bbox_3& box) const {
+    for (const Plane& pl : planes_) {
+      double top = -pl.offset;
+      for (int k = 0; k < 3; ++k) top += pl.normal[k] * (pl.normal[k] > 0.0 ? box.max(k) : box.min(k));
+      if (top < -pl.slack) return true;
+    }
+    return false;
+  }
+
+ private:
+  struct Plane {
+    Vec3 normal;
+    double offset, slack;
+  };
+  std::vector<Plane> planes_;
+};
+
 // Decides, triangle by triangle, which patches may meet the shaft's interior and records them in
 // `hits`: the test of the top of this file, for the tree traversal and for candidate lists alike.
 class ShaftTest {
@@ -464,18 +500,23 @@ class ShaftTest {
 // Traversal that hands every triangle whose box overlaps the shaft's box to a ShaftTest.
 class ShaftTraversal {
  public:
-  ShaftTraversal(const std::vector<Triangle>& triangles, ShaftTest& test) : triangles_(triangles), test_(test) {}
+  ShaftTraversal(const std::vector<Triangle>& triangles, const std::vector<CGAL::Bbox_3>& boxes,
+                 const ShaftPlanes& planes, ShaftTest& test)
+      : triangles_(triangles), boxes_(boxes), planes_(planes), test_(test) {}
   bool go_further() const { return true; }
   void intersection(const CGAL::Bbox_3&, const Primitive& primitive) {
-    test_(static_cast<std::size_t>(primitive.id() - triangles_.begin()));
+    const std::size_t i = static_cast<std::size_t>(primitive.id() - triangles_.begin());
+    if (!planes_.outside(boxes_[i])) test_(i);
   }
   template <class Node>
   bool do_intersect(const CGAL::Bbox_3& box, const Node& node) const {
-    return CGAL::do_overlap(box, node.bbox());
+    return CGAL::do_overlap(box, node.bbox()) && !planes_.outside(node.bbox());
   }
 
  private:
   const std::vector<Triangle>& triangles_;
+  const std::vector<CGAL::Bbox_3>& boxes_;
+  const ShaftPlanes& planes_;
   ShaftTest& test_;
 };
 
@@ -549,15 +590,18 @@ PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a
   ShaftTest test(triangles_, triangle_patch_, facets, pts, probes, options_.exact_shaft_contacts, patch_a, patch_b,
                  &hits);
   const CGAL::Bbox_3 shaft_box = bbox_of(pts);
+  const ShaftPlanes planes(facets, magnitude_);
   if (candidates == nullptr) {
-    ShaftTraversal traversal(triangles_, test);
+    ShaftTraversal traversal(triangles_, triangle_boxes_, planes, test);
     if (!triangles_.empty()) tree_.traversal(shaft_box, traversal);
   } else {
     for (const int patch : *candidates) {
       if (patch == patch_a || patch == patch_b) continue;
       const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
-      for (int i = begin; i < end; ++i)
-        if (CGAL::do_overlap(shaft_box, triangle_boxes_[static_cast<std::size_t>(i)])) test(static_cast<std::size_t>(i));
+      for (int i = begin; i < end; ++i) {
+        const CGAL::Bbox_3& box = triangle_boxes_[static_cast<std::size_t>(i)];
+        if (CGAL::do_overlap(shaft_box, box) && !planes.outside(box)) test(static_cast<std::size_t>(i));
+      }
     }
   }
   if (hits.empty()) return PairClass::kFullyVisible;
