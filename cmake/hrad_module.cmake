@@ -1,19 +1,32 @@
-# hrad_module(NAME DEPS ...): a static library hrad_NAME from lib/hrad/NAME/*.cpp.
-# Each module owns its lib/hrad/NAME/CMakeLists.txt, so modules build and test on their own.
+# hrad_module(NAME [DEPS ...] [PRIVATE ...]): a static library hrad_NAME (hrad::NAME) from
+# lib/hrad/NAME/*.cpp. DEPS are what its headers need (PUBLIC: a user of the module compiles against
+# them); PRIVATE what only its .cpp files include (linked, never compiled into a user: CGAL's
+# -frounding-math, OpenMesh, libpng and the like stay inside hrad). Each module owns its
+# lib/hrad/NAME/CMakeLists.txt, so modules build and test on their own. Its headers install to
+# include/hrad/NAME/, the library to lib/, both into the export set `hradTargets` (lib/CMakeLists.txt).
 function(hrad_module name)
-  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
+  file(GLOB headers CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.h)
+  set(includes $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/lib> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   if(sources)
     add_library(hrad_${name} STATIC ${sources})
-    target_include_directories(hrad_${name} PUBLIC ${PROJECT_SOURCE_DIR}/lib)
-    target_link_libraries(hrad_${name} PUBLIC ${ARG_DEPS})
+    target_include_directories(hrad_${name} PUBLIC ${includes})
+    target_link_libraries(hrad_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE})
     target_compile_options(hrad_${name} PRIVATE -Wall -Wextra)
   else()
+    if(ARG_PRIVATE)
+      message(FATAL_ERROR "hrad_module(${name}): a header-only module has no PRIVATE dependencies")
+    endif()
     add_library(hrad_${name} INTERFACE)
-    target_include_directories(hrad_${name} INTERFACE ${PROJECT_SOURCE_DIR}/lib)
+    target_include_directories(hrad_${name} INTERFACE ${includes})
     target_link_libraries(hrad_${name} INTERFACE ${ARG_DEPS})
   endif()
+  set_target_properties(hrad_${name} PROPERTIES EXPORT_NAME ${name})
   add_library(hrad::${name} ALIAS hrad_${name})
+  install(TARGETS hrad_${name} EXPORT hradTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(FILES ${headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hrad/${name})
+  set_property(GLOBAL APPEND PROPERTY HRAD_MODULES ${name})
 endfunction()
 
 # hrad_test(NAME DEPS ... [LABELS ...]): one GoogleTest executable NAME_test from the

@@ -33,13 +33,13 @@
 
 #include "commands.h"
 #include "hrad/core/error.h"
+#include "hrad/core/tone_map.h"
 #include "hrad/experiments/figures.h"
 #include "hrad/io/atomic_file.h"
-#include "hrad/io/scene_reader.h"
 #include "hrad/io/png_writer.h"
-#include "hrad/report/report_json.h"
+#include "hrad/io/scene_reader.h"
 #include "hrad/render/render.h"
-#include "hrad/render/tone_map.h"
+#include "hrad/report/report_json.h"
 #include "plot.h"
 
 namespace hrad::cli {

@@ -20,14 +20,12 @@
 // Errors (unreadable file, malformed JSON with its byte offset, a polygon with fewer than 3 vertices,
 // non-finite coordinates, zero area, or vertices off its plane by more than 1e-7 of its diameter)
 // are one line naming the file and the pair, with a non-zero exit.
-#include <fstream>
 #include <iostream>
-#include <sstream>
-
-#include <fmt/format.h>
+#include <vector>
 
 #include "commands.h"
-#include "hrad/core/error.h"
+#include "hrad/formfactor/point_to_polygon.h"
+#include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/io/formfactor_json.h"
 #include "hrad/io/input_file.h"
 
@@ -39,7 +37,18 @@ void add_formfactor_command(CLI::App& app) {
   cmd->add_option("--json", *path, "Input file: {\"pairs\": [{\"name\", \"from\" | \"from_point\" + \"from_normal\", \"to\"}]}")
       ->required();
   cmd->callback([path] {
-    std::cout << evaluate_formfactor_json(read_input_file(*path), *path);
+    const std::vector<FormFactorQuery> queries = read_formfactor_json(read_input_file(*path), *path);
+    std::vector<FormFactorAnswer> answers;
+    answers.reserve(queries.size());
+    for (const FormFactorQuery& q : queries) {
+      if (q.from_is_point()) {
+        answers.push_back({point_to_polygon(q.from_point, q.from_normal, q.to), std::nullopt});
+      } else {
+        const PairFormFactor f = polygon_to_polygon(q.from, q.to);
+        answers.push_back({f.from_to, f.to_from});
+      }
+    }
+    std::cout << write_formfactor_json(queries, answers);
   });
 }
 

@@ -8,13 +8,14 @@
 
 #include "commands.h"
 #include "hrad/core/error.h"
+#include "hrad/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
       "hrad: radiosity research toolkit (classical, substructuring, hierarchical).\n"
       "Run `hrad SUBCOMMAND --help` for the options of each subcommand."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "hrad 0.1.0");
+  app.set_version_flag("--version", "hrad " HRAD_VERSION);
   hrad::cli::add_info_command(app);
   hrad::cli::add_render_command(app);
   hrad::cli::add_solve_command(app);

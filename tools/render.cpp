@@ -57,19 +57,19 @@
 
 #include "comma_numbers.h"
 #include "commands.h"
-#include "hrad/core/error.h"
-#include "hrad/core/memory.h"
 #include "hrad/analysis/error_metrics.h"
+#include "hrad/core/error.h"
+#include "hrad/core/face_geometry.h"
+#include "hrad/core/memory.h"
+#include "hrad/core/tone_map.h"
 #include "hrad/gather/gathered_image.h"
 #include "hrad/gather/leaf_gather.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/exr_writer.h"
-#include "hrad/io/scene_reader.h"
 #include "hrad/io/png_writer.h"
+#include "hrad/io/scene_reader.h"
 #include "hrad/io/solution_ply.h"
-#include "hrad/render/face_geometry.h"
 #include "hrad/render/render.h"
-#include "hrad/render/tone_map.h"
 
 namespace hrad::cli {
 namespace {

@@ -47,13 +47,13 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "hrad/core/scene_checks.h"
 #include "hrad/core/error.h"
+#include "hrad/core/scene_checks.h"
+#include "hrad/core/tone_map.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/scene_reader.h"
-#include "hrad/report/report_json.h"
 #include "hrad/io/solution_ply.h"
-#include "hrad/render/tone_map.h"
+#include "hrad/report/report_json.h"
 #include "hrad/solvers/solve.h"
 
 namespace hrad::cli {

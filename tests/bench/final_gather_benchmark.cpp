@@ -21,7 +21,7 @@
 #include "hrad/gather/leaf_gather.h"
 #include "hrad/io/obj_reader.h"
 #include "hrad/render/render.h"
-#include "hrad/render/tone_map.h"
+#include "hrad/core/tone_map.h"
 #include "hrad/solvers/solve.h"
 
 namespace hrad {

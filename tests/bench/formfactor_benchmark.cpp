@@ -32,10 +32,10 @@
 #include <vector>
 
 #include "hrad/formfactor/fast_atan2.h"
-#include "hrad/formfactor/monte_carlo_form_factor.h"
 #include "hrad/formfactor/point_to_polygon.h"
 #include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/formfactor/quadrature_form_factor.h"
+#include "support/monte_carlo_form_factor.h"
 
 namespace {
 

@@ -14,8 +14,8 @@
 #include <string>
 #include <thread>
 
+#include "hrad/core/face_geometry.h"
 #include "hrad/io/solution_ply.h"
-#include "hrad/render/face_geometry.h"
 #include "run_hrad.h"
 
 namespace hrad::test {

@@ -2,9 +2,9 @@
 // the Monte Carlo estimate lies within a few standard errors and its error shrinks like 1/sqrt(N).
 #include <gtest/gtest.h>
 
-#include "hrad/formfactor/monte_carlo_form_factor.h"
 #include "hrad/formfactor/quadrature_form_factor.h"
 #include "howell.h"
+#include "support/monte_carlo_form_factor.h"
 #include "test_geometry.h"
 
 namespace hrad::test {

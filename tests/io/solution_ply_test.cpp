@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "hrad/core/error.h"
-#include "hrad/render/face_geometry.h"
-#include "hrad/render/tone_map.h"
+#include "hrad/core/face_geometry.h"
+#include "hrad/core/tone_map.h"
 #include "../support/temp_dir.h"
 
 namespace hrad {

@@ -5,8 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "hrad/core/face_geometry.h"
 #include "hrad/core/rng.h"
-#include "hrad/render/face_geometry.h"
 
 namespace hrad {
 namespace {

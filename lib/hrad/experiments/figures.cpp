@@ -9,10 +9,10 @@
 
 #include "hrad/analysis/power_law_fit.h"
 #include "hrad/core/error.h"
+#include "hrad/core/face_geometry.h"
+#include "hrad/core/tone_map.h"
 #include "hrad/experiments/sweep.h"
-#include "hrad/render/face_geometry.h"
 #include "hrad/render/render.h"
-#include "hrad/render/tone_map.h"
 
 namespace hrad {
 namespace {

@@ -19,9 +19,9 @@
 
 #include "hrad/analysis/barnes_hut.h"
 #include "hrad/analysis/error_metrics.h"
+#include "hrad/core/image.h"
 #include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
-#include "hrad/render/image.h"
 #include "hrad/solvers/solve.h"
 
 namespace hrad {

@@ -9,7 +9,7 @@
 
 #include "hrad/core/solution.h"
 #include "hrad/gather/final_gather.h"
-#include "hrad/render/image.h"
+#include "hrad/core/image.h"
 #include "hrad/render/render.h"
 
 namespace hrad {

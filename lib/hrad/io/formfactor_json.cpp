@@ -1,16 +1,14 @@
-// The `hrad formfactor --json` evaluation (see formfactor_json.h), kept in the library so that the
-// fuzzer and the tests reach exactly what the command runs.
+// The `hrad formfactor --json` document (see formfactor_json.h): parsing and writing only, so that
+// the command, the fuzzer and the tests read and write exactly the same thing.
 #include "hrad/io/formfactor_json.h"
 
 #include <cmath>
-#include <vector>
+#include <cstdint>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "hrad/core/error.h"
-#include "hrad/formfactor/point_to_polygon.h"
-#include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/geometry/polygon.h"
 
 namespace hrad {
@@ -57,7 +55,7 @@ std::string number(double x) { return fmt::format("{:.17g}", x); }
 
 }  // namespace
 
-std::string evaluate_formfactor_json(const std::string& text, const std::string& path) {
+std::vector<FormFactorQuery> read_formfactor_json(const std::string& text, const std::string& path) {
   json doc;
   try {
     doc = json::parse(text);
@@ -72,45 +70,54 @@ std::string evaluate_formfactor_json(const std::string& text, const std::string&
   }
   if (!doc.is_object() || !doc.contains("pairs") || !doc.at("pairs").is_array())
     throw Error(fmt::format("{}: expected an object with an array \"pairs\"", path));
-  std::string out = "{\"pairs\": [";
   const json& pairs = doc.at("pairs");
+  std::vector<FormFactorQuery> queries;
+  queries.reserve(pairs.size());
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const json& pair = pairs[i];
     PairSite site{path, fmt::format("pair {}", i)};
     if (!pair.is_object()) site.fail("must be an object");
-    json name = static_cast<std::int64_t>(i);
+    FormFactorQuery q;
     if (pair.contains("name")) {
-      name = pair.at("name");
+      const json& name = pair.at("name");
       if (!name.is_string()) site.fail("'name' must be a string");
+      q.name = name.get<std::string>();
       site.label = fmt::format("pair {} ({})", i, name.dump());
     }
     for (const auto& item : pair.items())
       if (item.key() != "name" && item.key() != "from" && item.key() != "to" && item.key() != "from_point" &&
           item.key() != "from_normal")
         site.fail(fmt::format("unknown key '{}'", item.key()));
-    const std::vector<Vec3> to = read_polygon(pair, site, "to");
-    std::string from_to, to_from;
+    q.to = read_polygon(pair, site, "to");
     if (pair.contains("from_point") || pair.contains("from_normal")) {
       if (pair.contains("from")) site.fail("give either 'from' or 'from_point' and 'from_normal', not both");
       if (!pair.contains("from_point") || !pair.contains("from_normal"))
         site.fail("'from_point' and 'from_normal' go together");
-      const Vec3 x = read_vec3(pair.at("from_point"), site, "from_point");
+      q.from_point = read_vec3(pair.at("from_point"), site, "from_point");
       const Vec3 n = read_vec3(pair.at("from_normal"), site, "from_normal");
       if (!(n.norm() > 0.0)) site.fail("'from_normal' has zero length");
-      from_to = number(point_to_polygon(x, n.normalized(), to));
-      to_from = "null";
+      q.from_normal = n.normalized();
     } else {
-      const std::vector<Vec3> from = read_polygon(pair, site, "from");
-      const PairFormFactor f = polygon_to_polygon(from, to);
-      from_to = number(f.from_to);
-      to_from = number(f.to_from);
+      q.from = read_polygon(pair, site, "from");
     }
+    queries.push_back(std::move(q));
+  }
+  return queries;
+}
+
+std::string write_formfactor_json(std::span<const FormFactorQuery> queries,
+                                  std::span<const FormFactorAnswer> answers) {
+  if (queries.size() != answers.size())
+    throw Error(fmt::format("write_formfactor_json: {} queries but {} answers", queries.size(), answers.size()));
+  std::string out = "{\"pairs\": [";
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    const json name = queries[i].name ? json(*queries[i].name) : json(static_cast<std::int64_t>(i));
+    const FormFactorAnswer& a = answers[i];
     out += fmt::format("{}{{\"name\": {}, \"F_from_to\": {}, \"F_to_from\": {}}}", i ? ", " : "", name.dump(),
-                       from_to, to_from);
+                       number(a.from_to), a.to_from ? number(*a.to_from) : "null");
   }
   out += "]}\n";
   return out;
 }
-
 
 }  // namespace hrad

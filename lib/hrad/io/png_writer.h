@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "hrad/render/image.h"
+#include "hrad/core/image.h"
 
 namespace hrad {
 

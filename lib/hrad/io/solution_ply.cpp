@@ -9,11 +9,11 @@
 #include <fmt/format.h>
 
 #include "hrad/core/error.h"
+#include "hrad/core/face_geometry.h"
+#include "hrad/core/tone_map.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/input_file.h"
 #include "hrad/io/ply_file.h"
-#include "hrad/render/face_geometry.h"
-#include "hrad/render/tone_map.h"
 
 namespace hrad {
 namespace {

@@ -10,9 +10,9 @@
 #include <span>
 #include <vector>
 
+#include "hrad/core/image.h"
 #include "hrad/core/types.h"
 #include "hrad/render/camera.h"
-#include "hrad/render/image.h"
 
 namespace hrad {
 

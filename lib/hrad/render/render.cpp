@@ -7,9 +7,9 @@
 
 #include <fmt/format.h>
 
-#include "hrad/render/face_geometry.h"
+#include "hrad/core/face_geometry.h"
+#include "hrad/core/tone_map.h"
 #include "hrad/render/rasterizer.h"
-#include "hrad/render/tone_map.h"
 
 namespace hrad {
 namespace {

@@ -7,10 +7,10 @@
 #include <utility>
 #include <vector>
 
+#include "hrad/core/image.h"
 #include "hrad/core/progress.h"
 #include "hrad/core/solution.h"
 #include "hrad/render/camera.h"
-#include "hrad/render/image.h"
 
 namespace hrad {
 

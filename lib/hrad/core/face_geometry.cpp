@@ -1,4 +1,4 @@
-#include "hrad/render/face_geometry.h"
+#include "hrad/core/face_geometry.h"
 
 namespace hrad {
 

@@ -1,4 +1,4 @@
-#include "hrad/render/tone_map.h"
+#include "hrad/core/tone_map.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// Reference: Monte Carlo ray casting estimate of a polygon-to-polygon form factor.
+// Reference for tests: Monte Carlo ray casting estimate of a polygon-to-polygon form factor.
 #pragma once
 
 #include <cstdint>

@@ -1,9 +1,9 @@
-#include "hrad/render/tone_map.h"
+#include "hrad/core/tone_map.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "hrad/render/face_geometry.h"
+#include "hrad/core/face_geometry.h"
 
 namespace hrad {
 

@@ -1,4 +1,4 @@
-#include "hrad/formfactor/monte_carlo_form_factor.h"
+#include "support/monte_carlo_form_factor.h"
 
 #include <algorithm>
 #include <cmath>

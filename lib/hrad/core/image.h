@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "hrad/render/tone_map.h"
+#include "hrad/core/tone_map.h"
 
 namespace hrad {
 
