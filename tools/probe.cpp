@@ -25,7 +25,7 @@
 //                          (empty in space); grid points in the order u fastest, then v
 //   --gather-tolerance T   Barnes-Hut tolerance of the gather, relative to the mean radiosity
 //                          (default 1e-3; 0 gathers every leaf on its own; see leaf_gather.h)
-//   --visibility-samples K points per partly visible leaf or group, kernel-weighted (default 64)
+//   --visibility-samples K points per partly visible leaf, kernel-weighted (default 64)
 //   --exact-visibility     the exact visible region of each partly visible leaf instead of samples
 //                          (CGAL; milliseconds a leaf: the reference for the sampled estimate)
 //   --threads N            worker threads (default: all cores); the values do not depend on it
@@ -113,7 +113,7 @@ void add_probe_command(CLI::App& app) {
   cmd->add_option("--gather-tolerance", args->gather_tolerance,
                   "Barnes-Hut tolerance of the gather, relative to the mean radiosity (default 1e-3)");
   cmd->add_option("--visibility-samples", args->visibility_samples,
-                  "Points per partly visible leaf or group (default 64)");
+                  "Points per partly visible leaf (default 64)");
   cmd->add_flag("--exact-visibility", args->exact_visibility, "Exact visible regions instead of samples");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--seed", args->seed, "Seed of the visibility samples (default 1)");
