@@ -24,7 +24,8 @@
 //   --kernel contour|analytic
 //                          unoccluded form factors: contour (default: Gauss points on the receiver,
 //                          Lambert's exact point-to-polygon formula) or analytic (closed-form
-//                          polygon-to-polygon, ~1e-13, much slower)
+//                          polygon-to-polygon, ~1e-13, much slower); full and substructure only:
+//                          hierarchical radiosity always uses analytic (the report says so)
 //   --visibility-samples K point pairs per partially visible pair (default 64)
 //   --clustering auto|on|off
 //                          hierarchical: a cluster hierarchy above the input polygons, linked from
@@ -80,7 +81,7 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--max-iterations", args->max_iterations, "Iteration limit (default 10000)");
   cmd->add_option("--linear-solver", args->linear_solver, "Full: lu | jacobi | gauss_seidel (default lu)");
   cmd->add_option("--effects", args->effects, "auto | all (default auto)");
-  cmd->add_option("--kernel", args->kernel, "Form-factor kernel: contour (default) | analytic");
+  cmd->add_option("--kernel", args->kernel, "Full/substructure: form-factor kernel: contour (default) | analytic (hierarchical: always analytic)");
   cmd->add_option("--visibility-samples", args->visibility_samples, "Point pairs per partially visible pair (default 64)");
   cmd->add_option("--clustering", args->clustering, "Hierarchical: auto | on | off (default auto: on from 200 patches)");
   cmd->add_option("--push", args->push, "Hierarchical: hsa (default, O(links) gather) | leaf (links resolved to leaves)");

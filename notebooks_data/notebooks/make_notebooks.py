@@ -1,7 +1,9 @@
 """Writes sweep.ipynb and figures.ipynb (run with Debian's python3: `/usr/bin/python3 make_notebooks.py`).
 
-The notebooks read what `hrad sweep` and `hrad figures` wrote under notebooks_data/experiments/ (or the
-folder in $HRAD_EXPERIMENTS) and plot it with pandas and matplotlib."""
+The notebooks read what `hrad sweep` and `hrad figures` wrote and plot it with pandas and matplotlib:
+sweep.ipynb the folder in $HRAD_SWEEP (a user's own `hrad sweep SCENE --out DIR`), figures.ipynb the folder
+in $HRAD_FIGURES; by default the committed runs under notebooks_data/experiments/ (or the folder in
+$HRAD_EXPERIMENTS)."""
 import nbformat
 from nbformat.v4 import new_code_cell, new_markdown_cell, new_notebook
 
@@ -31,10 +33,12 @@ sweep = notebook([
     new_markdown_cell("# What accuracy costs in time\n\n"
                       "Reads the folder `hrad sweep` wrote (`sweep.csv`, `fit.json`, `reference.json`, "
                       "`command.txt`): every method run over its accuracy parameter on one scene, each run's "
-                      "relative L2 error of B - E against one reference: a finer full-matrix LU solve, final-gathered "
+                      "relative L2 error of B - E against one reference: a full-matrix LU solve, final-gathered "
                       "at the error samples (`reference.json` says how), for the constant element field and for the "
                       "displayed (vertex-interpolated) field."),
-    new_code_cell(SETUP + '\nDIR = EXPERIMENTS / "sweep_cornell"\nprint((DIR / "command.txt").read_text())'),
+    new_code_cell(SETUP + '\n# The sweep to plot: set HRAD_SWEEP to the folder of your own `hrad sweep SCENE --out DIR`.\n'
+                  'DIR = Path(os.environ.get("HRAD_SWEEP", EXPERIMENTS / "sweep_cornell"))\n'
+                  'print((DIR / "command.txt").read_text())'),
     new_code_cell('sweep = pd.read_csv(DIR / "sweep.csv")\n'
                   'reference = json.loads((DIR / "reference.json").read_text())\n'
                   'fits = json.loads((DIR / "fit.json").read_text())\n'
@@ -75,23 +79,27 @@ figures = notebook([
     new_markdown_cell("# The lecture's figures, measured\n\n"
                       "Reads the folder `hrad figures` wrote: `figN_<name>.csv` behind each figure, the PNGs, "
                       "`headlines.json` and `command.txt`. Each section re-plots one CSV."),
-    new_code_cell(SETUP + '\nDIR = EXPERIMENTS / "figures"\nprint((DIR / "command.txt").read_text())\n'
+    new_code_cell(SETUP + '\n# The figures to plot: set HRAD_FIGURES to the folder of your own `hrad figures --out DIR`.\n'
+                  'DIR = Path(os.environ.get("HRAD_FIGURES", EXPERIMENTS / "figures"))\n'
+                  'print((DIR / "command.txt").read_text())\n'
                   'headlines = json.loads((DIR / "headlines.json").read_text())\n'
                   'print(json.dumps(headlines, indent=1))'),
-    new_markdown_cell("## 1. Form factors against elements (Cornell box)\n\n"
+    new_markdown_cell("## 1. Measured work against elements (Cornell box)\n\n"
                       "The lecture: n elements need n^2 form factors; substructuring nN; hierarchical radiosity "
-                      "O(n) links at a fixed accuracy."),
+                      "O(n) links at a fixed accuracy. Plotted here: what the solves counted (form factors "
+                      "evaluated, terms per gather iteration, visibility rays) and their seconds."),
     new_code_cell('cost = pd.read_csv(DIR / "fig1_cost.csv")\n'
-                  'fig, ax = plt.subplots(figsize=(7, 5))\n'
-                  'for method, g in cost.groupby("method"):\n'
-                  '    g = g.sort_values("elements")\n'
-                  '    ax.plot(g.elements, g.links, "o-", color=COLORS[method], label=method)\n'
-                  'n = cost.elements.agg(["min", "max"]).to_numpy(dtype=float)\n'
-                  'ax.plot(n, n**2, "--", color="gray", lw=0.8, label="n^2")\n'
-                  'ax.plot(n, n, ":", color="gray", lw=0.8, label="n")\n'
-                  'ax.set(xscale="log", yscale="log", xlabel="elements n", ylabel="form factors (links)")\n'
-                  'ax.grid(True, which="both", alpha=0.3)\n'
-                  'ax.legend(fontsize=8)\n'
+                  'cost["factor_evaluations"] = cost.element_factor_evaluations + cost.point_factor_evaluations\n'
+                  'measures = ["factor_evaluations", "gather_terms", "segment_queries", "seconds"]\n'
+                  'fig, axes = plt.subplots(2, 2, figsize=(11, 8))\n'
+                  'for ax, measure in zip(axes.flat, measures):\n'
+                  '    for method, g in cost.groupby("method"):\n'
+                  '        g = g.sort_values("elements")\n'
+                  '        g = g[g[measure] > 0]\n'
+                  '        ax.plot(g.elements, g[measure], "o-", color=COLORS[method], label=method)\n'
+                  '    ax.set(xscale="log", yscale="log", xlabel="elements n", title=measure)\n'
+                  '    ax.grid(True, which="both", alpha=0.3)\n'
+                  '    ax.legend(fontsize=8)\n'
                   'plt.show()\n'
                   'print(json.dumps(json.loads((DIR / "fig1_cost_fit.json").read_text()), indent=1))'),
     new_markdown_cell("## 2. Two surfaces meeting along an edge\n\n"

@@ -3,7 +3,7 @@
 //   taskset -c 0 build/bin/formfactor_benchmark --benchmark_repetitions=3 --benchmark_report_aggregates_only
 // and quote ratios from one run. The counter `rel_error` is the error against Howell's C-11;
 // items_per_second is per CPU second (on a loaded machine wall time is longer).
-// Targets (issue #3): point-to-quad >= 10 M/s, quad-to-quad in general position >= 200 k/s.
+// Targets: point-to-quad >= 10 M/s, quad-to-quad in general position >= 200 k/s.
 // Where the time goes: point-to-quad, per edge one cross product, one square root, one fast_atan2
 // and one division (the atan2 was half the time with the C library's); quad-to-quad in general
 // position, 16 skew edge pairs whose Clausen-type remainder takes ~11.7 Gauss nodes each (about

@@ -1,4 +1,4 @@
-// Bad input to every subcommand (issue 7): a clear one-line error on stderr naming the file, line,
+// Bad input to every subcommand: a clear one-line error on stderr naming the file, line,
 // pair or option, a non-zero exit, no crash, and no output file left behind. Option errors come
 // before any work: stderr holds the error line only (no progress).
 #include <gtest/gtest.h>

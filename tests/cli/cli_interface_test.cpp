@@ -1,6 +1,6 @@
-// The interfaces other checks read (issues 3 and 5), exercised through the real executable: the
-// form-factor JSON against Howell's closed forms, the solve report's fields and invariants, and
-// determinism (issue 7): the same command gives the same bytes, whatever the thread count.
+// The interfaces other checks read, exercised through the real executable: the form-factor JSON
+// against Howell's closed forms, the solve report's fields and invariants, and determinism: the same
+// command gives the same bytes, whatever the thread count.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -94,8 +94,8 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   // interface, one CSV row per setting, and error that falls as each method's mesh gets finer.
   TempDir dir;
   const std::string out = dir.path("sweep");
-  // (16 samples per patch alias with the element grid here: the full matrix's error then rose
-  // from 102 to 306 elements; the default 256 do not.)
+  // The sweep's default 256 error samples per patch (--samples), not fewer: 16 alias with this
+  // room's element grid, and the full matrix's measured error can then rise with refinement.
   const RunResult r = run_hrad("sweep notebooks_data/scenes/simple_room.obj --quick --out " + out, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("reference"), std::string::npos) << r.err;  // progress on stderr

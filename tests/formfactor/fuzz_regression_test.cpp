@@ -26,7 +26,7 @@ TEST(FuzzRegression, PartlySharedCollinearEdge) {
   EXPECT_NEAR(f.from_to, q.value, 1e-6 + 10 * q.error_estimate);
 }
 
-// formfactor_json_fuzzer, corpus file regression_huge_quad.json (session 3): a unit right triangle
+// formfactor_json_fuzzer, corpus file regression_huge_quad.json: a unit right triangle
 // (with a repeated vertex) under a quad 1 wide and 1.1e12 long, 1 above. The contour sum is rounding
 // noise at that aspect ratio and the refinement ran out of pieces; the noise (F = 4.8e6) was returned.
 // The part of the quad beyond y = 1e3 adds less than 1e-3 to the factor: compare with the quad cut there.

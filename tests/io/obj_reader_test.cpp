@@ -176,7 +176,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "newmtl w\nKd nan 0.5 0.5\n", "m.mtl:2: 'nan' is not a finite number"},
         BadCase{"only degenerate faces", "mtllib m.mtl\nusemtl w\nv 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", kMtl,
                 "@: no patch left"},
-        // Fuzzer finding (session 3): the line scan counted "v\r 5 0 0" as a vertex, tinyobjloader (which
+        // A fuzzer finding (corpus of scene_reader_fuzzer): the line scan counted "v\r 5 0 0" as a vertex, tinyobjloader (which
         // ends lines at a lone \r) did not, so face index 4 passed the scan and read past the parser's
         // vertex array (heap-buffer-overflow under ASan).
         BadCase{"carriage return inside a line", "mtllib m.mtl\nusemtl w\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv\r 5 0 0\nf 1 2 4\n",

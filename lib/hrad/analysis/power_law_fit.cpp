@@ -39,8 +39,9 @@ PowerLawFit fit_power_law(const std::vector<double>& x, const std::vector<double
   for (std::size_t i = 1; i < x.size(); ++i) distinct = distinct || x[i] != x[0];
   if (!distinct) throw Error("power-law fit: needs at least two distinct x values");
 
-  // Start from the line through the extreme points (the problem is linear: one Gauss-Newton
-  // step would do; Ceres also gives the covariance).
+  // Start from the flat line through the first point (ln a = ln y[0], b = 0): the residuals are
+  // linear in (ln a, b), so Ceres's first Gauss-Newton step reaches the minimum from any start;
+  // Ceres is used for the covariance it also gives.
   double params[2] = {std::log(y[0]), 0.0};  // ln a, b
   ceres::Problem problem;
   for (std::size_t i = 0; i < x.size(); ++i) {

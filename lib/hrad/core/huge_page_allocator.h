@@ -1,10 +1,7 @@
 // An allocator for the solvers' largest arrays (hundreds of MB to GB): on Linux it asks for
 // transparent huge pages (2 MB) for blocks of 32 MB or more, so that first touching them faults
-// 512x fewer pages. Measured on the 2-core VM these results come from (THP in "madvise" mode):
-// zero-filling a fresh 1.6 GB block took 4.5 s with 4 kB pages and 1.2 s with huge pages; the
-// hierarchical solver's leaf factors (75 M entries, 1.5 GB, at 17k elements on the Cornell box)
-// spent 4.1 of their 13.1 s allocating, and took 9.0 s in all with huge pages. Elsewhere, or where
-// the kernel refuses, it is plain operator new.
+// 512x fewer pages (tests/bench/memory_benchmark.cpp measures first touch both ways). Elsewhere,
+// or where the kernel refuses, it is plain operator new.
 #pragma once
 
 #include <cstddef>

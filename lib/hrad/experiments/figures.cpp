@@ -93,33 +93,53 @@ std::vector<CostRow> cost_rows(const Scene& scene, const CostOptions& options, c
     const double value = parameter == "aeps" ? o.aeps : o.max_area;
     report(progress, fmt::format("figure 1: {} {}={:.4g}", to_string(o.method), parameter, value));
     const SolveSummary s = solve(scene, o, nullptr);
-    rows.push_back({std::string(to_string(o.method)), parameter, value, s.patches, s.elements, s.links,
-                    s.form_factor_evaluations, s.total_seconds});
+    rows.push_back({std::string(to_string(o.method)), parameter, value, s.patches, s.elements, s.links, s.work,
+                    s.total_seconds});
   }
   return rows;
 }
 
+std::span<const CostMeasure> cost_measures() {
+  static constexpr CostMeasure kMeasures[] = {
+      {"factor_evaluations",
+       [](const CostRow& r) { return double(r.work.form_factor_evaluations + r.work.point_factor_evaluations); }},
+      {"gather_terms", [](const CostRow& r) { return double(r.work.gather_terms); }},
+      {"segment_queries", [](const CostRow& r) { return double(r.work.segment_queries); }},
+      {"seconds", [](const CostRow& r) { return r.seconds; }},
+  };
+  return kMeasures;
+}
+
 std::string cost_csv(const std::vector<CostRow>& rows) {
-  std::string out = "method,parameter,value,patches,elements,links,form_factor_evaluations,seconds\n";
+  std::string out =
+      "method,parameter,value,patches,elements,links,element_factor_evaluations,point_factor_evaluations,"
+      "gather_terms,segment_queries,seconds\n";
   for (const CostRow& r : rows)
-    out += fmt::format("{},{},{:.9g},{},{},{},{},{:.6g}\n", r.method, r.parameter, r.value, r.patches, r.elements,
-                       r.links, r.form_factor_evaluations, r.seconds);
+    out += fmt::format("{},{},{:.9g},{},{},{},{},{},{},{},{:.6g}\n", r.method, r.parameter, r.value, r.patches,
+                       r.elements, r.links, r.work.form_factor_evaluations, r.work.point_factor_evaluations,
+                       r.work.gather_terms, r.work.segment_queries, r.seconds);
   return out;
 }
 
 nlohmann::json cost_fits(const std::vector<CostRow>& rows) {
   nlohmann::json j;
-  j["model"] = "links ~ a elements^b, least squares in log space (Ceres, lib/hrad/analysis/power_law_fit.h)";
-  std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> xy;
+  j["model"] =
+      "measure ~ a elements^b, least squares in log space (Ceres, lib/hrad/analysis/power_law_fit.h), for work "
+      "the solves counted (lib/hrad/solvers/work.h) and their seconds";
+  std::map<std::string, std::vector<const CostRow*>> by_method;
   for (const CostRow& r : rows)
-    if (r.elements > 0 && r.links > 0) {
-      xy[r.method].first.push_back(double(r.elements));
-      xy[r.method].second.push_back(double(r.links));
+    if (r.elements > 0) by_method[r.method].push_back(&r);
+  for (const auto& [method, list] : by_method)
+    for (const CostMeasure& m : cost_measures()) {
+      std::vector<double> x, y;
+      for (const CostRow* r : list) {
+        x.push_back(double(r->elements));
+        y.push_back(m.of(*r));
+      }
+      const std::set<double> distinct(x.begin(), x.end());
+      const bool positive = std::all_of(y.begin(), y.end(), [](double v) { return v > 0.0; });
+      j["methods"][method][m.name] = distinct.size() >= 3 && positive ? fit_json(fit_power_law(x, y)) : nlohmann::json();
     }
-  for (const auto& [method, data] : xy) {
-    const std::set<double> distinct(data.first.begin(), data.first.end());
-    j["methods"][method] = distinct.size() >= 3 ? fit_json(fit_power_law(data.first, data.second)) : nlohmann::json();
-  }
   return j;
 }
 

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,6 +24,7 @@
 #include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
 #include "hrad/solvers/solve.h"
+#include "hrad/solvers/work.h"
 
 namespace hrad {
 
@@ -37,9 +39,18 @@ struct CostRow {
   std::size_t patches = 0;   ///< input patches N (the shooters of substructuring)
   std::size_t elements = 0;  ///< leaves n
   std::size_t links = 0;     ///< SolveSummary::links: n^2, n N, or directed hierarchical links
-  std::uint64_t form_factor_evaluations = 0;
+  Work work;                 ///< what the solve did, as it counted it (solvers/work.h)
   double seconds = 0.0;
 };
+
+/// The measures of work figure 1 fits against elements: a name and how it is read from a row.
+struct CostMeasure {
+  const char* name;
+  double (*of)(const CostRow&);
+};
+/// factor_evaluations (element and point form factors the kernels evaluated), gather_terms (terms
+/// one gather iteration touches), segment_queries (visibility rays), seconds.
+std::span<const CostMeasure> cost_measures();
 
 struct CostOptions {
   /// Full matrix: max_area = total area / count (the full matrix with visibility is the slow one).
@@ -53,9 +64,11 @@ struct CostOptions {
 };
 
 std::vector<CostRow> cost_rows(const Scene& scene, const CostOptions& options, const ProgressFn& progress = {});
-/// Header: method,parameter,value,patches,elements,links,form_factor_evaluations,seconds.
+/// Header: method,parameter,value,patches,elements,links,element_factor_evaluations,
+/// point_factor_evaluations,gather_terms,segment_queries,seconds.
 std::string cost_csv(const std::vector<CostRow>& rows);
-/// Per method: Ceres fit links ~ a elements^b (null with fewer than 3 distinct element counts).
+/// Per method and measure (cost_measures()): Ceres fit measure ~ a elements^b (null with fewer than
+/// 3 distinct element counts or a measure that is 0 somewhere).
 nlohmann::json cost_fits(const std::vector<CostRow>& rows);
 
 // ---- Figure 2: two surfaces meeting along an edge ----------------------------------------------

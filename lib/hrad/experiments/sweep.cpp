@@ -122,8 +122,12 @@ Reference make_reference(const Scene& scene, const SweepOptions& options) {
       {"kind", "converged solution computed independently of the runs judged"},
       {"method", "full"},
       {"linear_solver", "lu"},
-      {"why", "a direct solve on a uniform mesh finer than any run of the sweep: it shares the exact kernels "
-              "with the runs but none of their discretisations or iterations"},
+      {"why", ref.gathered.empty()
+                  ? "a direct solve on a uniform mesh finer than any full-matrix run of the sweep: it shares the exact "
+                    "kernels with the runs but none of their discretisations or iterations"
+                  : "a direct solve on a uniform mesh, final-gathered at the error samples: it shares the exact kernels "
+                    "with the runs but none of their discretisations or iterations, and its own element error enters "
+                    "only through the gather's integral, so it need not be finer than the runs it judges"},
       {"elements_aimed_at", n},
       {"max_area", o.max_area},
       {"visibility_samples", o.visibility_samples},

@@ -44,9 +44,10 @@ struct SweepRow {
   std::vector<double> change_per_iteration;
 };
 
-/// The reference every run is judged against: a full-matrix LU solve on a finer uniform mesh than
-/// any full-matrix run of the sweep, with four times their visibility samples (so it shares the
-/// kernels but no discretisation with the runs).
+/// The reference every run is judged against: a full-matrix LU solve on a uniform mesh (4 x the
+/// finest full-matrix run's elements, at most kFinalGatherReferenceElements when final-gathered),
+/// with four times the runs' visibility samples (so it shares the kernels but no discretisation
+/// with the runs).
 struct Reference {
   Solution solution;  ///< reflected part B - E
   /// With SweepOptions::final_gather: B - E gathered from `solution` at the error samples

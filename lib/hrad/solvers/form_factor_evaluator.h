@@ -19,9 +19,9 @@ namespace hrad {
 
 /// The accuracy the solvers ask of polygon_to_polygon(): far below any discretisation or visibility
 /// error, and closure in a closed room still holds to ~1e-9, so B = E / (1 - rho) to ~1e-9 / (1 - rho)
-/// (hard_test asserts 1e-3 at rho 0.999). With the kernel's default (1e-11 and full-precision Gauss
-/// for far pairs) the Cornell box's hierarchical refinement at 1968 elements took 22.7 s instead of
-/// 3.3 s (one thread; perf put 67% in the far-field quadrature).
+/// (hard_test asserts 1e-3 at rho 0.999). The kernel's default (1e-11, full-precision Gauss for far
+/// pairs) spends most of a hierarchical refinement in the far-field quadrature;
+/// tests/bench/hierarchical_benchmark.cpp measures the refinement.
 inline constexpr double kSolverPairTolerance = 1e-9;
 
 /// How the unoccluded factor of a pair is computed.

@@ -48,11 +48,10 @@ enum class Push {
 /// are cheap and plain HSA is the reference).
 inline constexpr std::size_t kAutoClusteringPatches = 200;
 
-/// Default point pairs per partly visible pair. 64, not 16: on the Cornell box at aeps = total/4000
-/// (~2050 elements) the worst face of plain HSA is 5.4% off an 8k-element full matrix with 16 and
-/// 2.0% with 64 (256: 2.0%), and the clustered and plain solves then agree within 1% instead of
-/// 2.5%; HR costs ~20% more (1.05 -> 1.24 s). A coarse link's visible fraction is one number for a
-/// whole penumbra, so its sampling noise does not average out as elements shrink.
+/// Default point pairs per partly visible pair. A coarse link's visible fraction is one number for a
+/// whole penumbra, so its sampling noise does not average out as elements shrink: the count must be
+/// large enough that the noise stays below the discretisation error of fine meshes (on the Cornell
+/// box, 16 were not and 256 gave the same answer as 64; `hrad sweep --visibility-samples K` measures it).
 inline constexpr int kDefaultVisibilitySamples = 64;
 
 struct SolveOptions {
