@@ -191,7 +191,7 @@ TEST(EnergyBalance, ClosedColouredRoomContourKernel) {
 }
 
 TEST(EnergyBalance, ClosedRoomWithOccludingBlock) {
-  // Visibility is sampled (16 point pairs per partial pair), so rows sum to 1 only approximately.
+  // Visibility is sampled (kDefaultVisibilitySamples point pairs per partial pair), so rows sum to 1 only approximately.
   const Scene s = coloured_box(true);
   for (const Method m : {Method::kFull, Method::kSubstructure}) {
     Solution sol;

@@ -269,7 +269,7 @@ TEST(Hierarchical, ClosedBoxWithAFloatingBlockNeedsVisibility) {
   ASSERT_EQ(sum.termination, Termination::kConverged) << sum.message;
   EXPECT_TRUE(sum.effects.visibility);
   const double expected = e / (1.0 - rho);
-  // Sampled visibility (16 point pairs per partly visible pair) breaks closure a little: the
+  // Sampled visibility (kDefaultVisibilitySamples point pairs per partly visible pair) breaks closure a little: the
   // mean stays within 1%, single patches (the cube's faces) within 5%.
   EXPECT_NEAR(area_mean(s, sol, 0) / expected, 1.0, 0.01);
   EXPECT_LT(worst_patch_deviation(sol, expected), 0.05);

@@ -59,10 +59,10 @@ struct Reference {
 };
 
 /// The default reference's element count (aimed at) when runs are judged against its final gather.
-/// Final-gathered references aimed at 1024, 2048 and 4096 elements on the Cornell box (2156, 4307,
-/// 8657 actual) differ from the 4096 one by 0.22% and 0.10% relative L2 at the error samples: the
-/// gather, exact per point, converges much faster than the reference's own field, so the reference
-/// need not be finer than the runs it judges (an LU at 4 x a 17k-element run would need 76 GB).
+/// The gather, exact per point, converges much faster than the reference's own field (its element
+/// error enters only through an integral), so the reference need not be finer than the runs it
+/// judges, which an LU could not afford at the finest runs (8 n^2 bytes, O(n^3) time). Compare
+/// references with `hrad sweep SCENE --reference-elements N` at two N.
 inline constexpr double kFinalGatherReferenceElements = 4096;
 
 struct SweepOptions {
@@ -70,13 +70,13 @@ struct SweepOptions {
   /// kFinalGatherReferenceElements when the runs are judged against the reference's final gather.
   double reference_elements = 0.0;
   /// The full-matrix runs' linear solver. Gauss-Seidel, the classical choice (Cohen & Greenberg
-  /// 1985), not LU: on the Cornell box at 6044 elements it converges to 1e-6 in 13 sweeps, 0.34 s,
-  /// where LU takes 29 s (O(n^3)), so the full matrix's time is its form factors, as in the lecture.
+  /// 1985), not LU: it converges in a few sweeps of n^2 terms where LU costs O(n^3), so the full
+  /// matrix's time is its form factors, as in the lecture (the report's iterations and seconds show it).
   LinearSolver full_linear_solver = LinearSolver::kGaussSeidel;
   /// Element counts of the full-matrix and substructuring runs (max_area = total area / count).
   /// From 64 to 9000: on the Cornell box 2156 elements at 1024 and 17009 / 20666 at 7000 / 9000 (a
-  /// uniform mesh quarters elements, so counts jump), the first full-matrix runs within ~1% of the
-  /// reference (README); the finest needs 3.4 GB for F.
+  /// uniform mesh quarters elements, so counts jump), the finest full-matrix runs near 1% of the
+  /// reference (README, "Accuracy against time"); the finest needs 8 n^2 = 3.4 GB for F.
   std::vector<double> element_counts = {64, 256, 1024, 2560, 5120, 7000, 9000};
   /// Shooting-patch counts of the substructuring patch-size runs (at the median element count).
   std::vector<double> patch_counts = {24, 48, 96, 192, 384};
