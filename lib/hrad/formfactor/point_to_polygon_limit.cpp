@@ -10,7 +10,8 @@
 
 namespace hrad {
 
-double point_to_polygon_limit(const Vec3& x, const Vec3& n, const Vec3& d, std::span<const Vec3> polygon) {
+double point_to_polygon_limit(const Vec3& x, const Vec3& n, const Vec3& d, std::span<const Vec3> polygon,
+                              double rel_tol) {
   const std::size_t k = polygon.size();
   if (k < 3) return 0.0;
   const Vec3 normal = newell_normal(polygon);
@@ -25,7 +26,7 @@ double point_to_polygon_limit(const Vec3& x, const Vec3& n, const Vec3& d, std::
       distance = normal.dot(x - v) / normal_length;
     }
   }
-  if (distance > 1e-12 * nearest) return point_to_polygon(x, n, polygon);  // strictly in front
+  if (distance > 1e-12 * nearest) return point_to_polygon(x, n, polygon, rel_tol);  // strictly in front
   // x' = x + t d must come from the front of the polygon's plane.
   if (!(normal.dot(d) > 0.0) || distance < -1e-12 * nearest) return 0.0;
   // In the plane: clip to x's closed front half-space, then Lambert's sum in the limit.

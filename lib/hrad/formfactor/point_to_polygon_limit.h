@@ -6,6 +6,7 @@
 #include <span>
 
 #include "hrad/core/types.h"
+#include "hrad/formfactor/point_to_polygon.h"
 
 namespace hrad {
 
@@ -18,7 +19,9 @@ namespace hrad {
 /// the angle is pi and the edge's plane through x' tends to the one spanned by the edge and d; a
 /// vertex at x is seen in direction -d. The polygon seen edge-on from x, as from a point on an edge
 /// shared with it, then counts with the part of x's hemisphere it fills in the limit (1/2 for a
-/// perpendicular polygon across the whole hemisphere's edge).
-double point_to_polygon_limit(const Vec3& x, const Vec3& n, const Vec3& d, std::span<const Vec3> polygon);
+/// perpendicular polygon across the whole hemisphere's edge). `rel_tol` is point_to_polygon()'s
+/// for the point strictly in front (kLambertSumOnly: the plain sum, ~1e-16 absolute).
+double point_to_polygon_limit(const Vec3& x, const Vec3& n, const Vec3& d, std::span<const Vec3> polygon,
+                              double rel_tol = kPointToPolygonTolerance);
 
 }  // namespace hrad

@@ -176,7 +176,7 @@ double FormFactorEvaluator::point_factor(const Vec3& x, const Vec3& n, std::span
 double FormFactorEvaluator::point_factor(const Vec3& x, const Vec3& n, const Vec3& inward,
                                          std::span<const Vec3> source) const {
   point_factors_.fetch_add(1, std::memory_order_relaxed);
-  return point_to_polygon_limit(x, n, inward, source);
+  return point_to_polygon_limit(x, n, inward, source, kLambertSumOnly);
 }
 
 PairFormFactor FormFactorEvaluator::gauss(std::span<const Vec3> receiver, std::span<const Vec3> source) const {

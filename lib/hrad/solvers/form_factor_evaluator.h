@@ -95,7 +95,8 @@ class FormFactorEvaluator {
   /// F(dA_x -> source), unoccluded, for a point x with unit normal n (point_to_polygon()).
   double point_factor(const Vec3& x, const Vec3& n, std::span<const Vec3> source) const;
   /// The same approached from inside x's element along `inward` (point_to_polygon_limit()): the
-  /// factor's one-sided limit where x lies in the source's plane, e.g. on a shared edge.
+  /// factor's one-sided limit where x lies in the source's plane, e.g. on a shared edge. Both are
+  /// plain Lambert sums (kLambertSumOnly: ~1e-16 absolute, no refinement where the sum cancels).
   double point_factor(const Vec3& x, const Vec3& n, const Vec3& inward, std::span<const Vec3> source) const;
 
   /// Both directions of the unoccluded factor by the closed form (polygon_to_polygon() at
