@@ -44,7 +44,7 @@ void add_scene_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   gen->add_option("--polygons", args->polygons, "Input polygons wanted (64 .. 10000000)")->required();
   gen->add_option("--seed", args->seed, "Placement seed (default 1)");
-  gen->add_option("--kind", args->kind, "office (default) | pillars | city (closed rooms) | urban (buildings on a ground, open)");
+  gen->add_option("--kind", args->kind, "office (default) | pillars (closed rooms) | city (blocks under an emitting sky) | urban (buildings on a ground, for view factors)");
   gen->add_option("--out", args->out, "OBJ file to write (the .mtl goes beside it)")->required();
   gen->callback([args] {
     // Parsed here, not by CLI11 (which accepted 99999999999999999999): a whole number that fits 64 bits.
