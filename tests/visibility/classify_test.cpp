@@ -77,16 +77,17 @@ TEST(Classify, WallsTouchingTheShaftDoNotMakeItPartial) {
   // A closed unit room: four walls touch the floor and the ceiling along their edges.
   Scene s = empty_scene();
   const int floor = add_patch(s, kFloor), ceiling = add_patch(s, kCeiling);
-  add_patch(s, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}});  // x = 1, front -x
-  add_patch(s, {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}});  // x = 0, front +x
-  add_patch(s, {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}});  // y = 0, front +y
-  add_patch(s, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}});  // y = 1, front -y
+  add_patch(s, {{1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}});  // x = 1, front -x
+  add_patch(s, {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}});  // x = 0, front +x
+  add_patch(s, {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}});  // y = 0, front +y
+  add_patch(s, {{0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}});  // y = 1, front -y
   const auto v = make_visibility(s);
   EXPECT_EQ(v->classify(kFloor, floor, kCeiling, ceiling), PairClass::kFullyVisible);
   // Corner elements: the floor element touches two walls, the ceiling element the other two.
   const auto fa = square_z(0.75, 1, 0, 0.25, 0, true), cb = square_z(0, 0.25, 0.75, 1, 1, false);
   EXPECT_EQ(v->classify(fa, floor, cb, ceiling), PairClass::kFullyVisible);
-  // Floor element against a wall element that shares its edge (perpendicular neighbours).
+  // Floor element against a wall element that shares its edge (perpendicular neighbours). An
+  // element is a part of its patch and faces the way the patch does.
   const std::vector<Vec3> wall_el{{1, 0.25, 0}, {1, 0.25, 0.25}, {1, 0.5, 0.25}, {1, 0.5, 0}};  // front -x
   EXPECT_EQ(v->classify(square_z(0.75, 1, 0.25, 0.5, 0, true), floor, wall_el, 2), PairClass::kFullyVisible);
 }

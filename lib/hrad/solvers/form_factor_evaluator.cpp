@@ -8,6 +8,7 @@
 #include <cassert>
 #include <numbers>
 
+#include "hrad/formfactor/clip_polygon.h"
 #include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/formfactor/point_to_polygon.h"
 #include "hrad/formfactor/point_to_polygon_limit.h"
@@ -28,6 +29,15 @@ bool behind(std::span<const Vec3> a, std::span<const Vec3> b) {
   return true;
 }
 
+// The part of the convex polygon `poly` in front of the plane of `other` (Sutherland-Hodgman).
+void front_part(std::span<const Vec3> poly, std::span<const Vec3> other, std::vector<Vec3>& out) {
+  const Vec3 n = newell_normal(other);
+  thread_local std::vector<double> height;
+  height.clear();
+  for (const Vec3& v : poly) height.push_back((v - other[0]).dot(n));
+  detail::clip_to_half_space(poly, height, out);
+}
+
 }  // namespace
 
 bool FormFactorEvaluator::separated(std::span<const Vec3> receiver, std::span<const Vec3> source, double ratio) {
@@ -44,7 +54,6 @@ bool FormFactorEvaluator::separated(std::span<const Vec3> receiver, std::span<co
   const double gap = (rc - sc).norm() - rr - sr;
   return gap > 0.0 && 2.0 * rr <= ratio * gap;
 }
-
 
 FormFactorEvaluator::FormFactorEvaluator(const Scene& scene, const Effects& effects, const Visibility* visibility,
                                          int visibility_samples, FormFactorKernel kernel)
@@ -117,7 +126,12 @@ std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<con
   detail::Rng rx(detail::mix_seed(seed, 1));
   thread_local std::vector<Vec2> ux;
   detail::stratified_unit_square(kx, rx, &ux);
-  const detail::PolygonSampler sx(receiver);
+  // Points only on the part of the receiver in front of the source's plane: elsewhere no ray
+  // carries weight (visibility_from_point() keeps to the facing part of the source in turn).
+  thread_local std::vector<Vec3> facing;
+  front_part(receiver, source, facing);
+  if (facing.size() < 3) return {0.0, detail::fraction_error(0, 0)};
+  const detail::PolygonSampler sx(facing);
   const Vec3 nx = newell_normal(receiver).normalized();
   KernelVisibility sum;
   for (std::size_t i = 0; i < ux.size(); ++i) {
@@ -129,7 +143,9 @@ std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<con
     sum.rays += k.rays;
   }
   const double error = detail::fraction_error(sum.visible_rays, sum.rays);
-  if (!(sum.weight > 0.0)) return {sum.rays > 0 ? double(sum.visible_rays) / sum.rays : 1.0, error};
+  // No ray found a facing pair that carries weight: nothing is known to be seen. (A fraction over
+  // rays that carry no weight is no estimate: it gave closed boxes their light.)
+  if (!(sum.weight > 0.0)) return {0.0, error};
   return {sum.visible / sum.weight, error};
 }
 
@@ -142,19 +158,29 @@ KernelVisibility FormFactorEvaluator::visibility_from_point(const Vec3& x, const
   detail::Rng rng(seed);
   thread_local std::vector<Vec2> uv;
   detail::stratified_unit_square(rays, rng, &uv);
+  // Rays only to the part of the source in front of x's tangent plane, where they carry weight.
+  thread_local std::vector<Vec3> facing;
+  thread_local std::vector<double> height;
+  height.clear();
+  for (const Vec3& v : source) height.push_back((v - x).dot(nx));
+  detail::clip_to_half_space(source, height, facing);
+  if (facing.size() < 3) return k;
   // The refinement oracle asks one ray per point: then building the sampler costs more than the ray.
   std::optional<detail::PolygonSampler> sampler;
-  if (uv.size() > 2) sampler.emplace(source);
+  if (uv.size() > 2) sampler.emplace(facing);
   const Vec3 ny = scene_.patches[static_cast<std::size_t>(source_patch)].normal;
   for (const Vec2& s : uv) {
-    const Vec3 y = sampler ? sampler->point(s.x(), s.y()) : detail::polygon_point(source, s.x(), s.y());
+    const Vec3 y = sampler ? sampler->point(s.x(), s.y()) : detail::polygon_point(facing, s.x(), s.y());
+    // Facing and occlusion decided exactly on the points of the patches that x and y stand for
+    // (Visibility::sight()): a pair whose rounded doubles merely seem to face each other is not
+    // a ray, and no ray passes through a closed surface.
+    const Sight sight = occluders != nullptr ? visibility_->sight_among(x, patch_x, y, source_patch, *occluders)
+                                             : visibility_->sight(x, patch_x, y, source_patch);
+    if (sight == Sight::kFacingAway) continue;
     const double w = detail::point_pair_kernel(nx, ny, y - x);
-    if (!(w > 0.0)) continue;  // a ray that carries no weight is not cast
-    const bool blocked = occluders != nullptr ? visibility_->segment_blocked_among(x, patch_x, y, source_patch, *occluders)
-                                              : visibility_->segment_blocked(x, patch_x, y, source_patch);
     ++k.rays;
     k.weight += w;
-    if (!blocked) {
+    if (sight == Sight::kVisible) {
       ++k.visible_rays;
       k.visible += w;
     }
@@ -237,11 +263,14 @@ FormFactorEstimate FormFactorEvaluator::sampled(const SurfaceSampler& p, const S
       const Vec3& ny = scene_.patches[static_cast<std::size_t>(py)].normal;
       k = detail::point_pair_kernel(nx, ny, y - x) / std::numbers::pi;
     }
+    // With visibility, facing and occlusion are decided exactly (Visibility::sight()).
+    const Sight sight = k > 0.0 && effects_.visibility && px != py ? visibility_->sight(x, px, y, py) : Sight::kVisible;
+    if (sight == Sight::kFacingAway) k = 0.0;
     double kv = k;
     if (k > 0.0) {
       ++counted;
       weight += k;
-      if (effects_.visibility && visibility_->segment_blocked(x, px, y, py)) kv = 0.0;
+      if (sight == Sight::kBlocked) kv = 0.0;
       else ++visible, visible_weight += k;
     }
     sum += kv;

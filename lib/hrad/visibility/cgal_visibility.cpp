@@ -2,7 +2,8 @@
 // predicates (Exact_predicates_inexact_constructions_kernel: every predicate below is decided
 // exactly on the input doubles; no construction is ever made, so no epsilon is needed).
 //
-// Touching rules (what "the open segment a-b meets a patch" means):
+// Touching rules (what "the open segment a-b meets a patch" means; a and b are the points the
+// ends stand for, see "Points on patches" below):
 //   * Occluders are CLOSED: a patch is the union of its fan triangles including their edges and
 //     vertices. A segment through a shared edge or vertex of two triangles of an occluding mesh
 //     is blocked, so no light passes between the triangles of a closed surface, whatever its
@@ -12,6 +13,21 @@
 //     does not block. The endpoints' own patches `patch_a` and `patch_b` never block.
 //   * Grazing: a segment lying in an occluder's plane is blocked iff it overlaps the closed
 //     triangle in more than an endpoint (it runs along the surface or crosses it).
+// Points on patches. The solvers' points and elements lie on patches only to rounding: a sample
+// point or an element's midpoint vertex on a tilted patch is off the patch's plane by an ulp or
+// so. Decided on those doubles, a zero-thickness wall's back-to-back twin blocked segments leaving
+// the wall whenever the rounding fell behind it (on a turned two-sided box, three quarters of the
+// segments across the empty box), and let light through the wall between points whose rounding
+// put them on the wrong sides: light leaked into closed boxes. So every point or vertex that names
+// its patch stands for the point of the patch's surface with its coordinates on the two axes
+// across the patch's dominant normal axis (exactly the double point when that lies on the surface,
+// e.g. on an axis-aligned patch), and everything about it is decided exactly: interval arithmetic
+// first, exact homogeneous arithmetic when an interval test is undecided (exact_kernels.h,
+// on_patch_segment.h, PatchOps below). Facing is decided on these points too (sight()), and
+// before any element test on the patches' own vertices (patches_face()): so no pair of points on
+// either side of a closed surface of the input can carry light through it, whatever the
+// tessellation. The input must be closed in its own doubles: a T-vertex rounded off the edge it
+// splits (a tilted wall's vertex computed in doubles) opens a real crack an ulp wide.
 // Pair classification (shaft culling, Haines & Wallace 1994): the shaft of two convex polygons
 // A and B is S = conv(A u B), which holds every segment between them; for A, B not coplanar the
 // open segments between their relative interiors lie in the interior of S. Only mutually facing
@@ -32,16 +48,25 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Mpzf.h>
+#include <CGAL/Simple_cartesian.h>
 #include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <mutex>
+#include <optional>
+#include <type_traits>
 #include <vector>
 
+#include "hrad/geometry/polygon.h"
+#include "hrad/visibility/exact_kernels.h"
+#include "hrad/visibility/on_patch_segment.h"
 #include "hrad/visibility/sampling.h"
 #include "hrad/visibility/segment_bvh.h"
+#include "hrad/visibility/segment_triangle.h"
 #include "hrad/visibility/shaft_exact.h"
 #include "hrad/visibility/visibility.h"
 
@@ -59,106 +84,139 @@ using Tree = CGAL::AABB_tree<AabbTraits>;
 
 Point to_point(const Vec3& v) { return Point(v.x(), v.y(), v.z()); }
 
-/// p lies in the closed triangle t; p is coplanar with t, t is not degenerate.
-bool in_closed_coplanar_triangle(const Point& p, const Triangle& t) {
-  for (int k = 0; k < 3; ++k)
-    if (CGAL::coplanar_orientation(t[k], t[k + 1], t[k + 2], p) == CGAL::NEGATIVE) return false;
-  return true;
-}
-
-/// a lies in the closed triangle t and b != a is coplanar with it: does the segment leave a into
-/// t? Yes iff b is on the inner side of (or on) every edge line through a (the tangent cone of t at a).
-bool enters_triangle_from(const Point& a, const Point& b, const Triangle& t) {
-  for (int k = 0; k < 3; ++k)
-    if (CGAL::coplanar_orientation(t[k], t[k + 1], t[k + 2], a) == CGAL::COLLINEAR &&
-        CGAL::coplanar_orientation(t[k], t[k + 1], t[k + 2], b) == CGAL::NEGATIVE)
-      return false;
-  return true;
-}
-
-/// The line through a and b, which lie strictly on opposite sides of t's plane, meets closed t.
-bool crossing_inside(const Point& a, const Point& b, const Triangle& t) {
-  const CGAL::Orientation s0 = CGAL::orientation(a, b, t[0], t[1]);
-  const CGAL::Orientation s1 = CGAL::orientation(a, b, t[1], t[2]);
-  const CGAL::Orientation s2 = CGAL::orientation(a, b, t[2], t[0]);
-  const bool pos = s0 == CGAL::POSITIVE || s1 == CGAL::POSITIVE || s2 == CGAL::POSITIVE;
-  const bool neg = s0 == CGAL::NEGATIVE || s1 == CGAL::NEGATIVE || s2 == CGAL::NEGATIVE;
-  return !(pos && neg);
-}
-
-/// Exact: the open segment (a, b), a != b, meets the closed non-degenerate triangle t.
 bool open_segment_meets_triangle(const Point& a, const Point& b, const Triangle& t) {
-  const CGAL::Orientation oa = CGAL::orientation(t[0], t[1], t[2], a);
-  const CGAL::Orientation ob = CGAL::orientation(t[0], t[1], t[2], b);
-  if (oa == ob && oa != CGAL::COPLANAR) return false;                      // same open side
-  if (oa != CGAL::COPLANAR && ob != CGAL::COPLANAR) return crossing_inside(a, b, t);
-  if (oa != CGAL::COPLANAR || ob != CGAL::COPLANAR) return false;          // meets the plane at an endpoint only
-  // The segment lies in t's plane.
-  const bool a_in = in_closed_coplanar_triangle(a, t);
-  const bool b_in = in_closed_coplanar_triangle(b, t);
-  if (a_in && b_in) return true;
-  if (a_in) return enters_triangle_from(a, b, t);
-  if (b_in) return enters_triangle_from(b, a, t);
-  return CGAL::do_intersect(Segment(a, b), t);  // neither endpoint inside: any contact is interior
+  return detail::open_segment_meets_triangle<K>(a, b, t);
+}
+bool crossing_inside(const Point& a, const Point& b, const Triangle& t) { return detail::crossing_inside<K>(a, b, t); }
+
+/// The predicates of the shaft tests on double points (exact predicates on the doubles).
+struct DoubleOps {
+  using P = Point;
+  using Tri = Triangle;
+  static CGAL::Orientation orient(const P& a, const P& b, const P& c, const P& d) { return CGAL::orientation(a, b, c, d); }
+  static bool collinear(const P& a, const P& b, const P& c) { return CGAL::collinear(a, b, c); }
+  static Vec3 approx(const P& p) { return Vec3(p.x(), p.y(), p.z()); }
+};
+
+/// A point exactly on a patch: the double point itself, or its projection onto the plane of one
+/// of the patch's triangles along an axis (exact_kernels.h), with an interval enclosure.
+struct PatchPoint {
+  Point p;
+  const detail::Triangle3* plane = nullptr;  ///< null: p itself
+  int axis = 0;
+  detail::IntervalKernel::Point_3 box;
+  mutable std::optional<detail::HomogeneousKernel::Point_3> exact_;
+  const detail::HomogeneousKernel::Point_3& exact() const {
+    if (!exact_) exact_ = detail::plane_point<detail::HomogeneousKernel>(plane, axis, Vec3(p.x(), p.y(), p.z()));
+    return *exact_;
+  }
+};
+
+PatchPoint patch_point(const Point& p, const detail::Triangle3* plane, int axis) {
+  PatchPoint q{p, plane, axis, detail::IntervalKernel::Point_3(p.x(), p.y(), p.z()), {}};
+  if (plane != nullptr) {
+    CGAL::Protect_FPU_rounding<true> upward;
+    q.box = detail::plane_point<detail::IntervalKernel>(plane, axis, Vec3(p.x(), p.y(), p.z()));
+  }
+  return q;
+}
+
+/// The same predicates on points exactly on patches, each decided on its own: intervals, then
+/// exact arithmetic (on the doubles when every point is one, else on homogeneous points). Callers
+/// hold the rounding mode upward (CGAL::Protect_FPU_rounding<true>) for the intervals.
+struct PatchOps {
+  using P = PatchPoint;
+  using Tri = std::array<PatchPoint, 3>;
+  using DoubleExact = CGAL::Simple_cartesian<CGAL::Mpzf>;
+  static DoubleExact::Point_3 exact_double(const Point& p) { return {CGAL::Mpzf(p.x()), CGAL::Mpzf(p.y()), CGAL::Mpzf(p.z())}; }
+  static CGAL::Orientation orient(const P& a, const P& b, const P& c, const P& d) {
+    const CGAL::Uncertain<CGAL::Orientation> o = CGAL::orientation(a.box, b.box, c.box, d.box);
+    if (CGAL::is_certain(o)) return CGAL::get_certain(o);
+    if (!a.plane && !b.plane && !c.plane && !d.plane)
+      return CGAL::orientation(exact_double(a.p), exact_double(b.p), exact_double(c.p), exact_double(d.p));
+    return CGAL::orientation(a.exact(), b.exact(), c.exact(), d.exact());
+  }
+  static bool collinear(const P& a, const P& b, const P& c) {
+    // Collinear iff (b - a) x (c - a) = 0: certainly not when an interval component excludes 0.
+    const auto n = CGAL::cross_product(b.box - a.box, c.box - a.box);
+    for (int k = 0; k < 3; ++k)
+      if (CGAL::is_certain(CGAL::is_zero(n[k])) && !CGAL::get_certain(CGAL::is_zero(n[k]))) return false;
+    if (!a.plane && !b.plane && !c.plane) return CGAL::collinear(exact_double(a.p), exact_double(b.p), exact_double(c.p));
+    return CGAL::collinear(a.exact(), b.exact(), c.exact());
+  }
+  static Vec3 approx(const P& p) { return Vec3(p.p.x(), p.p.y(), p.p.z()); }
+};
+
+template <class Ops>
+bool line_meets(const typename Ops::P& a, const typename Ops::P& b, const typename Ops::Tri& t) {
+  return detail::line_meets_triangle(a, b, t, &Ops::orient);
 }
 
 /// Indices (0, j, k) of a non-collinear vertex triple of a convex polygon (counter-clockwise
 /// polygons give a counter-clockwise triple), or {-1, -1, -1} when all vertices are collinear.
-std::array<int, 3> plane_triple(std::span<const Point> poly) {
+/// The widest triple is chosen on rounded coordinates; only the collinearity test is exact.
+template <class EK>
+std::array<int, 3> plane_triple(std::span<const typename EK::P> poly) {
   const int n = static_cast<int>(poly.size());
+  auto approx = [&](int i) { return EK::approx(poly[static_cast<std::size_t>(i)]); };
   int best_j = -1, best_k = -1;
   double best = -1.0;
   for (int j = 1; j < n; ++j)
     for (int k = j + 1; k < n; ++k) {
-      const double w = CGAL::cross_product(poly[j] - poly[0], poly[k] - poly[0]).squared_length();
-      if (w > best && !CGAL::collinear(poly[0], poly[j], poly[k])) { best = w; best_j = j; best_k = k; }
+      const double w = (approx(j) - approx(0)).cross(approx(k) - approx(0)).squaredNorm();
+      if (w > best && !EK::collinear(poly[0], poly[j], poly[k])) { best = w; best_j = j; best_k = k; }
     }
   if (best_j < 0) return {-1, -1, -1};
   return {0, best_j, best_k};
 }
+std::array<int, 3> plane_triple(std::span<const Point> poly) { return plane_triple<DoubleOps>(poly); }
 
 /// Some point of `pts` lies strictly in front of the plane of the polygon `poly`.
-bool any_strictly_in_front(std::span<const Point> poly, std::span<const Point> pts) {
-  const auto [i, j, k] = plane_triple(poly);
+template <class EK>
+bool any_strictly_in_front(std::span<const typename EK::P> poly, std::span<const typename EK::P> pts) {
+  const auto [i, j, k] = plane_triple<EK>(poly);
   if (i < 0) return false;
-  for (const Point& p : pts)
-    if (CGAL::orientation(poly[i], poly[j], poly[k], p) == CGAL::POSITIVE) return true;
+  for (const auto& p : pts)
+    if (EK::orient(poly[i], poly[j], poly[k], p) == CGAL::POSITIVE) return true;
   return false;
 }
 
 /// A supporting plane of the shaft through three of its points, oriented with the shaft on the
 /// non-negative side.
+template <class EK>
 struct Facet {
-  Point p, q, r;
-  CGAL::Orientation side(const Point& x) const {
+  typename EK::P p, q, r;
+  CGAL::Orientation side(const typename EK::P& x) const {
     // Shared vertices are common (neighbouring patches) and cost the predicate its exact fallback.
-    if (x == p || x == q || x == r) return CGAL::COPLANAR;
-    return CGAL::orientation(p, q, r, x);
+    if constexpr (std::is_same_v<EK, DoubleOps>)
+      if (x == p || x == q || x == r) return CGAL::COPLANAR;
+    return EK::orient(p, q, r, x);
   }
 };
 
 /// The side facet planes of conv(A u B): those through points of both polygons (the planes of A
 /// and B themselves are added by the caller as front half-spaces). A facet found from several
 /// triples is kept once. Empty when all points are coplanar. O(n^4) in the few corners.
-std::vector<Facet> hull_facets(std::span<const Point> pts, std::size_t a_count) {
-  std::vector<Facet> facets;
+template <class EK>
+std::vector<Facet<EK>> hull_facets(std::span<const typename EK::P> pts, std::size_t a_count) {
+  std::vector<Facet<EK>> facets;
   const std::size_t n = pts.size();
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j)
       for (std::size_t k = j + 1; k < n; ++k) {
         if (k < a_count || i >= a_count) continue;  // all from A or all from B: its own plane
-        if (CGAL::collinear(pts[i], pts[j], pts[k])) continue;
+        if (EK::collinear(pts[i], pts[j], pts[k])) continue;
         bool pos = false, neg = false;
         for (std::size_t m = 0; m < n && !(pos && neg); ++m) {
           if (m == i || m == j || m == k) continue;
-          const CGAL::Orientation o = CGAL::orientation(pts[i], pts[j], pts[k], pts[m]);
+          const CGAL::Orientation o = EK::orient(pts[i], pts[j], pts[k], pts[m]);
           pos |= o == CGAL::POSITIVE;
           neg |= o == CGAL::NEGATIVE;
         }
         if (pos && neg) continue;
         if (!pos && !neg) return {};  // all coplanar: no 3D shaft
         // A facet holding more than three points is found once per triple: keep its first.
-        const bool known = std::any_of(facets.begin(), facets.end(), [&](const Facet& f) {
+        const bool known = std::any_of(facets.begin(), facets.end(), [&](const Facet<EK>& f) {
           return f.side(pts[i]) == CGAL::COPLANAR && f.side(pts[j]) == CGAL::COPLANAR &&
                  f.side(pts[k]) == CGAL::COPLANAR;
         });
@@ -169,17 +227,24 @@ std::vector<Facet> hull_facets(std::span<const Point> pts, std::size_t a_count) 
   return facets;
 }
 
-/// Drops vertices collinear with their neighbours (T-vertices of elements): the hull is the same.
+/// Drops the vertices of `all` collinear with their neighbours (T-vertices of elements): the
+/// hull is the same.
+template <class EK>
+std::vector<typename EK::P> drop_collinear(std::vector<typename EK::P> all) {
+  if (all.size() <= 3) return all;
+  std::vector<typename EK::P> out;
+  const std::size_t n = all.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (!EK::collinear(all[(i + n - 1) % n], all[i], all[(i + 1) % n])) out.push_back(all[i]);
+  return out.size() >= 3 ? out : all;
+}
+
+/// The polygon's vertices without T-vertices (drop_collinear()).
 std::vector<Point> corners(std::span<const Vec3> poly) {
   std::vector<Point> all;
   all.reserve(poly.size());
   for (const Vec3& v : poly) all.push_back(to_point(v));
-  if (all.size() <= 3) return all;
-  std::vector<Point> out;
-  const std::size_t n = all.size();
-  for (std::size_t i = 0; i < n; ++i)
-    if (!CGAL::collinear(all[(i + n - 1) % n], all[i], all[(i + 1) % n])) out.push_back(all[i]);
-  return out.size() >= 3 ? out : all;
+  return drop_collinear<DoubleOps>(std::move(all));
 }
 
 /// Box of some points (exact: the coordinates are the input doubles).
@@ -187,6 +252,45 @@ CGAL::Bbox_3 bbox_of(std::span<const Point> pts) {
   CGAL::Bbox_3 box = pts.front().bbox();
   for (const Point& p : pts) box += p.bbox();
   return box;
+}
+
+/// Classes of exactly coplanar triangles (twins of a zero-thickness wall, the triangles of one
+/// planar patch or of coplanar patches): equal ids only for exactly coplanar triangles, decided by
+/// exact predicates; triangles are bucketed by their rounded unit plane first, so a coplanar pair
+/// on either side of a rounding boundary may get two ids (callers only lose a shortcut then).
+std::vector<int> plane_classes(const std::vector<Triangle>& triangles, double magnitude) {
+  std::map<std::array<long long, 4>, std::vector<int>> buckets;  // key -> representatives
+  std::vector<int> id(triangles.size(), -1);
+  std::vector<int> representative;  // class id -> triangle
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const Triangle& tri = triangles[t];
+    const Vec3 p0(tri[0].x(), tri[0].y(), tri[0].z());
+    Vec3 n = (Vec3(tri[1].x(), tri[1].y(), tri[1].z()) - p0).cross(Vec3(tri[2].x(), tri[2].y(), tri[2].z()) - p0);
+    n.normalize();
+    int big = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(n[k]) > std::abs(n[big])) big = k;
+    if (n[big] < 0) n = -n;
+    const double q = 0x1p24;
+    const std::array<long long, 4> key{std::llround(n.x() * q), std::llround(n.y() * q), std::llround(n.z() * q),
+                                       std::llround(n.dot(p0) / magnitude * q)};
+    std::vector<int>& reps = buckets[key];
+    for (int c : reps) {
+      const Triangle& r = triangles[static_cast<std::size_t>(representative[static_cast<std::size_t>(c)])];
+      if (CGAL::orientation(r[0], r[1], r[2], tri[0]) == CGAL::COPLANAR &&
+          CGAL::orientation(r[0], r[1], r[2], tri[1]) == CGAL::COPLANAR &&
+          CGAL::orientation(r[0], r[1], r[2], tri[2]) == CGAL::COPLANAR) {
+        id[t] = c;
+        break;
+      }
+    }
+    if (id[t] < 0) {
+      id[t] = static_cast<int>(representative.size());
+      representative.push_back(static_cast<int>(t));
+      reps.push_back(id[t]);
+    }
+  }
+  return id;
 }
 
 class CgalVisibility final : public Visibility {
@@ -198,21 +302,35 @@ class CgalVisibility final : public Visibility {
     return blocked(to_point(a), patch_a, to_point(b), patch_b);
   }
 
+  Sight sight(const Vec3& a, int patch_a, const Vec3& b, int patch_b) const override;
+
+  Sight sight_among(const Vec3& a, int patch_a, const Vec3& b, int patch_b,
+                    std::span<const int> occluders) const override;
+
   PairClass classify(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b) const override {
-    const PairClass c = classify_corners(corners(a), patch_a, corners(b), patch_b);
-    count(c);
-    return c;
+    return classify_among(a, patch_a, b, patch_b, nullptr, nullptr);
   }
 
   PairClass classify_among(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b,
                            const std::vector<int>* candidates, std::vector<int>* occluders) const override {
-    const PairClass c = classify_corners(corners(a), patch_a, corners(b), patch_b, candidates, occluders);
+    // Elements are parts of their patches, but their vertices are rounded off the patches'
+    // planes: decide facing on the patches' own vertices first (a zero-thickness wall's inside
+    // and outside elements must never face each other, however their midpoints rounded).
+    PairClass c = PairClass::kFacingAway;
+    if (occluders != nullptr) occluders->clear();
+    if (patch_a < 0 || patch_b < 0 || patches_face(patch_a, patch_b))
+      c = on_surface(a, patch_a) && on_surface(b, patch_b)
+              ? classify_corners(corners(a), patch_a, corners(b), patch_b, true, candidates, occluders)
+              : classify_on_patches(a, patch_a, b, patch_b, candidates, occluders);
     count(c);
     return c;
   }
 
   bool segment_blocked_among(const Vec3& a, int patch_a, const Vec3& b, int patch_b,
-                             std::span<const int> occluders) const override;
+                             std::span<const int> occluders) const override {
+    counters().segment_queries.fetch_add(1, std::memory_order_relaxed);
+    return blocked(to_point(a), patch_a, to_point(b), patch_b, &occluders);
+  }
 
   VisibilityEstimate estimate(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b, int samples,
                               std::uint64_t seed) const override;
@@ -226,10 +344,67 @@ class CgalVisibility final : public Visibility {
   }
 
  private:
-  bool blocked(const Point& a, int patch_a, const Point& b, int patch_b) const;
+  /// A segment end on a patch (see end_on()).
+  struct PatchEnd {
+    detail::SegmentEnd end;  ///< plane null: the double point is exactly on its patch's surface
+    int triangle = -1;       ///< the fan triangle (index into triangles_) the point lies on
+    bool on_patch = true;    ///< false: x's shadow along the patch's axis misses the patch
+  };
+  /// The point of patch `patch`'s surface (its fan triangles) that x stands for: the one with x's
+  /// coordinates on the two axes across the patch's dominant normal axis, which is x itself when
+  /// x lies exactly on the surface. For patch < 0, x.
+  PatchEnd end_on(const Point& x, int patch) const;
+  /// Some vertex of each patch lies strictly in front of the other's plane (exact; false for
+  /// coplanar patches, found by their plane class without arithmetic).
+  bool patches_face(int pa, int pb) const;
+  /// Whether a patch other than patch_a and patch_b blocks the open segment between the points the
+  /// ends stand for; only the patches in `*occluders` when it is not null.
+  bool blocked(const Point& a, int patch_a, const Point& b, int patch_b,
+               const std::span<const int>* occluders = nullptr) const;
+  bool blocked_between(const Point& a, int patch_a, const Point& b, int patch_b,
+                       const std::span<const int>* occluders) const;
+  bool blocked_between(const PatchEnd& a, int patch_a, const PatchEnd& b, int patch_b,
+                       const std::span<const int>* occluders) const;
+  Sight sight_of(const Vec3& a, int patch_a, const Vec3& b, int patch_b, const std::span<const int>* occluders) const;
+  /// A triangle of triangles_ with its coordinates and plane class.
+  struct TriangleRef {
+    const Triangle& triangle;
+    const detail::Triangle3& coords;
+    int plane;
+  };
+  TriangleRef triangle_ref(std::size_t i) const { return {triangles_[i], triangle_coords_[i], triangle_plane_[i]}; }
+  /// Whether meets(TriangleRef) holds for a triangle of a patch other than patch_a and patch_b
+  /// whose box the segment a-b may meet; only `*occluders`' triangles when not null.
+  template <class Meets>
+  bool any_triangle_meets(const Point& a, int patch_a, const Point& b, int patch_b,
+                          const std::span<const int>* occluders, const Meets& meets) const;
   PairClass classify_corners(std::span<const Point> a, int patch_a, std::span<const Point> b, int patch_b,
-                             const std::vector<int>* candidates = nullptr, std::vector<int>* occluders = nullptr) const;
-  bool patch_hides(int patch, std::span<const Point> a, std::span<const Point> b) const;
+                             bool ends_on_patches = false, const std::vector<int>* candidates = nullptr,
+                             std::vector<int>* occluders = nullptr) const;
+  /// classify_among() of two elements whose vertices are not all exactly on their patches' surfaces.
+  PairClass classify_on_patches(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b,
+                                const std::vector<int>* candidates, std::vector<int>* occluders) const;
+  /// The shaft classification on points with the predicates of Ops (DoubleOps or PatchOps);
+  /// `box` holds them all; `ends_on_patches`: both polygons lie exactly in their patches' planes.
+  /// Candidates and occluders as in classify_among().
+  template <class Ops>
+  PairClass classify_points(std::span<const typename Ops::P> a, int patch_a, std::span<const typename Ops::P> b,
+                            int patch_b, const CGAL::Bbox_3& box, bool ends_on_patches,
+                            const std::vector<int>* candidates, std::vector<int>* occluders) const;
+  /// True when every vertex of `poly` lies exactly on patch `patch`'s surface (or patch < 0).
+  bool on_surface(std::span<const Vec3> poly, int patch) const;
+  template <class Ops>
+  bool patch_hides(int patch, std::span<const typename Ops::P> a, std::span<const typename Ops::P> b) const;
+  /// Triangle i of triangles_ as Ops's triangle.
+  template <class Ops>
+  typename Ops::Tri triangle_as(std::size_t i) const {
+    if constexpr (std::is_same_v<Ops, DoubleOps>) {
+      return triangles_[i];
+    } else {
+      const Triangle& t = triangles_[i];
+      return {patch_point(t[0], nullptr, 0), patch_point(t[1], nullptr, 0), patch_point(t[2], nullptr, 0)};
+    }
+  }
   bool decide_occlusion() const;
   int patch_of(TriangleIterator it) const { return triangle_patch_[it - triangles_.begin()]; }
   void count(PairClass c) const {
@@ -247,13 +422,20 @@ class CgalVisibility final : public Visibility {
   std::vector<int> triangle_patch_;
   std::vector<CGAL::Bbox_3> triangle_boxes_;
   std::vector<std::pair<int, int>> patch_triangles_;  ///< [begin, end) into triangles_ per patch
+  std::vector<detail::Triangle3> triangle_coords_;    ///< triangles_ as doubles
+  std::vector<int> triangle_plane_;        ///< plane_classes() of triangles_
+  std::vector<int> patch_axis_;            ///< the axis of each patch's largest normal component
+  std::vector<std::vector<Point>> patch_points_;      ///< each patch's vertices
+  std::vector<double> patch_level_;        ///< the patch's coordinate on that axis when constant, else NaN
   std::vector<char> patch_planar_;         ///< all vertices exactly coplanar
   std::vector<Point> vertices_;            ///< every patch vertex, for the convex-hull test
   double magnitude_ = 0.0;                 ///< largest |coordinate| of the scene
   Tree tree_;
   VisibilityOptions options_;
   detail::SegmentBvh bvh_;                 ///< segment queries (unless options_ ask for tree_)
-  std::vector<Triangle> bvh_triangles_;    ///< triangles_ in the hierarchy's leaf order
+  std::vector<Triangle> bvh_triangles_;    ///< triangles_ in the hierarchy's leaf order (locality)
+  std::vector<detail::Triangle3> bvh_triangle_coords_;
+  std::vector<int> bvh_plane_;
   std::vector<int> bvh_patch_;
   mutable std::once_flag occlusion_once_;
   mutable bool occlusion_ = true;
@@ -284,7 +466,21 @@ CgalVisibility::CgalVisibility(const Scene& scene, const VisibilityOptions& opti
       for (const Point& x : pts) planar = planar && CGAL::orientation(pts[tri[0]], pts[tri[1]], pts[tri[2]], x) == CGAL::COPLANAR;
     patch_triangles_.emplace_back(begin, static_cast<int>(triangles_.size()));
     patch_planar_.push_back(planar ? 1 : 0);
+    patch_points_.push_back(pts);
+    const Vec3 n = newell_normal(v);
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(n[k]) > std::abs(n[axis])) axis = k;
+    patch_axis_.push_back(axis);
+    const bool level = std::all_of(v.begin(), v.end(), [&](const Vec3& x) { return x[axis] == v[0][axis]; });
+    patch_level_.push_back(level ? v[0][axis] : std::numeric_limits<double>::quiet_NaN());
   }
+  for (const Triangle& t : triangles_) {
+    detail::Triangle3 c;
+    for (int k = 0; k < 3; ++k) c[k] = Vec3(t[k].x(), t[k].y(), t[k].z());
+    triangle_coords_.push_back(c);
+  }
+  triangle_plane_ = plane_classes(triangles_, magnitude_ > 0.0 ? magnitude_ : 1.0);
   tree_.rebuild(triangles_.cbegin(), triangles_.cend());
   std::vector<detail::Box3> boxes(triangles_.size());
   for (std::size_t i = 0; i < triangles_.size(); ++i)
@@ -292,6 +488,8 @@ CgalVisibility::CgalVisibility(const Scene& scene, const VisibilityOptions& opti
   bvh_ = detail::SegmentBvh(boxes);
   for (std::uint32_t i : bvh_.order()) {
     bvh_triangles_.push_back(triangles_[i]);
+    bvh_triangle_coords_.push_back(triangle_coords_[i]);
+    bvh_plane_.push_back(triangle_plane_[i]);
     bvh_patch_.push_back(triangle_patch_[i]);
   }
 }
@@ -335,21 +533,22 @@ class SegmentBoxCull {
   bool flat_[3];
 };
 
-// Traversal that stops at the first triangle blocking the open segment.
+// Traversal that stops at the first triangle for which `meets(index into triangles_)` holds.
+template <class Meets>
 class BlockingTraversal {
  public:
   BlockingTraversal(const std::vector<Triangle>& triangles, const std::vector<int>& patch_of,
-                    const std::vector<CGAL::Bbox_3>& boxes, double magnitude, const Point& a, int patch_a,
-                    const Point& b, int patch_b)
-      : triangles_(triangles), patch_of_(patch_of), boxes_(boxes), a_(a), b_(b), pa_(patch_a), pb_(patch_b),
-        cull_(a, b, magnitude) {}
+                    const std::vector<CGAL::Bbox_3>& boxes, const SegmentBoxCull& cull, int patch_a, int patch_b,
+                    const Meets& meets)
+      : triangles_(triangles), patch_of_(patch_of), boxes_(boxes), cull_(cull), pa_(patch_a), pb_(patch_b),
+        meets_(meets) {}
   bool go_further() const { return !blocked_; }
   void intersection(const Segment&, const Primitive& primitive) {
     // CGAL's tree hands over the primitives of a two-primitive node without testing their boxes.
     const std::size_t index = static_cast<std::size_t>(primitive.id() - triangles_.begin());
     const int patch = patch_of_[index];
     if (patch == pa_ || patch == pb_ || !cull_.may_meet(boxes_[index])) return;
-    if (open_segment_meets_triangle(a_, b_, *primitive.id())) blocked_ = true;
+    if (meets_(index)) blocked_ = true;
   }
   template <class Node>
   bool do_intersect(const Segment&, const Node& node) const {
@@ -361,54 +560,181 @@ class BlockingTraversal {
   const std::vector<Triangle>& triangles_;
   const std::vector<int>& patch_of_;
   const std::vector<CGAL::Bbox_3>& boxes_;
-  const Point& a_;
-  const Point& b_;
+  const SegmentBoxCull& cull_;
   int pa_, pb_;
-  SegmentBoxCull cull_;
+  const Meets& meets_;
   bool blocked_ = false;
 };
 
-bool CgalVisibility::blocked(const Point& a, int patch_a, const Point& b, int patch_b) const {
-  if (a == b || triangles_.empty()) return false;  // the open segment is empty
+CgalVisibility::PatchEnd CgalVisibility::end_on(const Point& x, int patch) const {
+  PatchEnd e;
+  e.end.x = Vec3(x.x(), x.y(), x.z());
+  if (patch < 0) return e;
+  const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
+  const int k = patch_axis_[static_cast<std::size_t>(patch)], i = (k + 1) % 3, j = (k + 2) % 3;
+  e.end.axis = k;
+  // The fan triangle whose shadow along axis k holds x's (exact: dropping a coordinate is exact).
+  using Point2 = K::Point_2;
+  const Point2 q(x[i], x[j]);
+  int fallback = -1;
+  for (int t = begin; t < end && e.triangle < 0; ++t) {
+    const Triangle& tri = triangles_[static_cast<std::size_t>(t)];
+    const Point2 p[3] = {{tri[0][i], tri[0][j]}, {tri[1][i], tri[1][j]}, {tri[2][i], tri[2][j]}};
+    const CGAL::Orientation o = CGAL::orientation(p[0], p[1], p[2]);
+    if (o == CGAL::COLLINEAR) continue;  // seen edge-on along k (only in a non-planar patch)
+    if (fallback < 0) fallback = t;
+    bool inside = true;
+    for (int m = 0; m < 3 && inside; ++m) inside = CGAL::orientation(p[m], p[(m + 1) % 3], q) != -o;
+    if (inside) e.triangle = t;
+  }
+  if (e.triangle < 0) {
+    e.on_patch = false;
+    e.triangle = fallback;
+    if (fallback < 0) return e;  // no triangle to project onto: x as it is
+  }
+  // On an axis-aligned patch a double point is on the surface when its coordinate is the patch's;
+  // elsewhere it almost never is, and projecting a point that is gives the point itself.
+  const double level = patch_level_[static_cast<std::size_t>(patch)];
+  if (std::isnan(level) || x[k] != level) e.end.plane = &triangle_coords_[static_cast<std::size_t>(e.triangle)];
+  return e;
+}
+
+bool CgalVisibility::on_surface(std::span<const Vec3> poly, int patch) const {
+  if (patch < 0) return true;
+  const double level = patch_level_[static_cast<std::size_t>(patch)];
+  if (std::isnan(level)) {
+    // Not axis-aligned: only the patch's own vertices are known to lie on it without arithmetic.
+    const auto& own = patch_points_[static_cast<std::size_t>(patch)];
+    return std::all_of(poly.begin(), poly.end(), [&](const Vec3& v) {
+      return std::find(own.begin(), own.end(), to_point(v)) != own.end();
+    });
+  }
+  const int k = patch_axis_[static_cast<std::size_t>(patch)];
+  return std::all_of(poly.begin(), poly.end(), [&](const Vec3& v) { return v[k] == level; });
+}
+
+bool CgalVisibility::patches_face(int pa, int pb) const {
+  const auto [ba, ea] = patch_triangles_[static_cast<std::size_t>(pa)];
+  const auto [bb, eb] = patch_triangles_[static_cast<std::size_t>(pb)];
+  if (ba == ea || bb == eb) return false;  // no area
+  const bool planar = patch_planar_[static_cast<std::size_t>(pa)] && patch_planar_[static_cast<std::size_t>(pb)];
+  if (planar && triangle_plane_[static_cast<std::size_t>(ba)] == triangle_plane_[static_cast<std::size_t>(bb)])
+    return false;
+  // In front of the plane of any of the patch's fan triangles (one plane unless the patch is a
+  // quad bent within the reader's planarity tolerance).
+  const auto in_front = [&](int plane_of, int points_of) {
+    const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(plane_of)];
+    for (int i = begin; i < end; ++i) {
+      const Triangle& t = triangles_[static_cast<std::size_t>(i)];
+      for (const Point& p : patch_points_[static_cast<std::size_t>(points_of)])
+        if (p != t[0] && p != t[1] && p != t[2] && CGAL::orientation(t[0], t[1], t[2], p) == CGAL::POSITIVE)
+          return true;
+    }
+    return false;
+  };
+  return in_front(pa, pb) && in_front(pb, pa);
+}
+
+bool CgalVisibility::blocked(const Point& a, int patch_a, const Point& b, int patch_b,
+                             const std::span<const int>* occluders) const {
+  if (triangles_.empty()) return false;
+  const PatchEnd ea = end_on(a, patch_a), eb = end_on(b, patch_b);
+  if (ea.end.plane == nullptr && eb.end.plane == nullptr) return blocked_between(a, patch_a, b, patch_b, occluders);
+  return blocked_between(ea, patch_a, eb, patch_b, occluders);
+}
+
+template <class Meets>
+bool CgalVisibility::any_triangle_meets(const Point& a, int patch_a, const Point& b, int patch_b,
+                                        const std::span<const int>* occluders, const Meets& meets) const {
+  if (occluders != nullptr) {
+    const SegmentBoxCull cull(a, b, magnitude_);
+    for (const int patch : *occluders) {
+      if (patch == patch_a || patch == patch_b) continue;
+      const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
+      for (int i = begin; i < end; ++i)
+        if (cull.may_meet(triangle_boxes_[static_cast<std::size_t>(i)]) && meets(triangle_ref(static_cast<std::size_t>(i))))
+          return true;
+    }
+    return false;
+  }
   if (!options_.cgal_tree_for_segments) {
     const detail::SegmentCull cull({a.x(), a.y(), a.z()}, {b.x(), b.y(), b.z()}, magnitude_);
     return bvh_.any_hit(cull, [&](std::uint32_t i) {
       const int patch = bvh_patch_[i];
-      return patch != patch_a && patch != patch_b && open_segment_meets_triangle(a, b, bvh_triangles_[i]);
+      return patch != patch_a && patch != patch_b && meets(TriangleRef{bvh_triangles_[i], bvh_triangle_coords_[i], bvh_plane_[i]});
     });
   }
-  BlockingTraversal traversal(triangles_, triangle_patch_, triangle_boxes_, magnitude_, a, patch_a, b, patch_b);
+  const SegmentBoxCull cull(a, b, magnitude_);
+  const auto meets_index = [&](std::size_t i) { return meets(triangle_ref(i)); };
+  BlockingTraversal traversal(triangles_, triangle_patch_, triangle_boxes_, cull, patch_a, patch_b, meets_index);
   tree_.traversal(Segment(a, b), traversal);
   return traversal.blocked();
 }
 
-bool CgalVisibility::segment_blocked_among(const Vec3& a, int patch_a, const Vec3& b, int patch_b,
-                                           std::span<const int> occluders) const {
+bool CgalVisibility::blocked_between(const Point& a, int patch_a, const Point& b, int patch_b,
+                                     const std::span<const int>* occluders) const {
+  if (a == b) return false;  // the open segment is empty
+  return any_triangle_meets(a, patch_a, b, patch_b, occluders,
+                            [&](const TriangleRef& t) { return open_segment_meets_triangle(a, b, t.triangle); });
+}
+
+bool CgalVisibility::blocked_between(const PatchEnd& ea, int patch_a, const PatchEnd& eb, int patch_b,
+                                     const std::span<const int>* occluders) const {
+  const detail::OnPatchSegment segment(ea.end, eb.end);
+  if (segment.degenerate()) return false;
+  // The ends' points lie within a few units in the last place of the doubles, far inside the
+  // culling tests' padding (2^-40 of the coordinates' magnitude).
+  // An end lies exactly in the plane of its triangle, so in that of every triangle coplanar with it.
+  const int plane_a = ea.triangle >= 0 ? triangle_plane_[static_cast<std::size_t>(ea.triangle)] : -1;
+  const int plane_b = eb.triangle >= 0 ? triangle_plane_[static_cast<std::size_t>(eb.triangle)] : -1;
+  return any_triangle_meets(to_point(ea.end.x), patch_a, to_point(eb.end.x), patch_b, occluders,
+                            [&](const TriangleRef& t) { return segment.meets(t.coords, t.plane == plane_a, t.plane == plane_b); });
+}
+
+Sight CgalVisibility::sight(const Vec3& a, int patch_a, const Vec3& b, int patch_b) const {
+  return sight_of(a, patch_a, b, patch_b, nullptr);
+}
+
+Sight CgalVisibility::sight_among(const Vec3& a, int patch_a, const Vec3& b, int patch_b,
+                                  std::span<const int> occluders) const {
+  return sight_of(a, patch_a, b, patch_b, &occluders);
+}
+
+Sight CgalVisibility::sight_of(const Vec3& a, int patch_a, const Vec3& b, int patch_b,
+                               const std::span<const int>* occluders) const {
   counters().segment_queries.fetch_add(1, std::memory_order_relaxed);
   const Point pa = to_point(a), pb = to_point(b);
-  if (pa == pb) return false;
-  const SegmentBoxCull cull(pa, pb, magnitude_);
-  for (const int patch : occluders) {
-    if (patch == patch_a || patch == patch_b) continue;
-    const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
-    for (int i = begin; i < end; ++i)
-      if (cull.may_meet(triangle_boxes_[static_cast<std::size_t>(i)]) &&
-          open_segment_meets_triangle(pa, pb, triangles_[static_cast<std::size_t>(i)]))
-        return true;
+  const PatchEnd ea = end_on(pa, patch_a), eb = end_on(pb, patch_b);
+  if (patch_a < 0 || patch_b < 0 || !ea.on_patch || !eb.on_patch || ea.triangle < 0 || eb.triangle < 0)
+    return Sight::kFacingAway;
+  const Triangle& ta = triangles_[static_cast<std::size_t>(ea.triangle)];
+  const Triangle& tb = triangles_[static_cast<std::size_t>(eb.triangle)];
+  if (ea.end.plane == nullptr && eb.end.plane == nullptr) {
+    if (CGAL::orientation(ta[0], ta[1], ta[2], pb) != CGAL::POSITIVE ||
+        CGAL::orientation(tb[0], tb[1], tb[2], pa) != CGAL::POSITIVE)
+      return Sight::kFacingAway;
+    return blocked_between(pa, patch_a, pb, patch_b, occluders) ? Sight::kBlocked : Sight::kVisible;
   }
-  return false;
+  const detail::OnPatchSegment segment(ea.end, eb.end);
+  if (!segment.facing(triangle_coords_[static_cast<std::size_t>(ea.triangle)],
+                      triangle_coords_[static_cast<std::size_t>(eb.triangle)]))
+    return Sight::kFacingAway;
+  return blocked_between(ea, patch_a, eb, patch_b, occluders) ? Sight::kBlocked : Sight::kVisible;
 }
 
 // The shaft's bounding planes in doubles, for culling boxes before any exact test (Haines &
 // Wallace 1994, shaft culling): a box all of whose points lie on the outer side of one plane, by
 // more than a slack many orders above the rounding of the plane's arithmetic, cannot meet the
 // shaft. The shaft's box alone lets a long diagonal shaft (across a city) visit most of the scene.
+// A point that stands for a point on its patch (PatchOps) is off its double coordinates by a few
+// units in the last place, far inside the slack.
 class ShaftPlanes {
  public:
-  ShaftPlanes(std::span<const Facet> facets, double scene_magnitude) {
-    for (const Facet& f : facets) {
-      const Vec3 p(f.p.x(), f.p.y(), f.p.z());
-      const Vec3 u = Vec3(f.q.x(), f.q.y(), f.q.z()) - p, v = Vec3(f.r.x(), f.r.y(), f.r.z()) - p;
+  template <class Ops>
+  ShaftPlanes(std::span<const Facet<Ops>> facets, double scene_magnitude) {
+    for (const Facet<Ops>& f : facets) {
+      const Vec3 p = Ops::approx(f.p);
+      const Vec3 u = Ops::approx(f.q) - p, v = Ops::approx(f.r) - p;
       const Vec3 n = u.cross(v);  // CGAL::orientation(p, q, r, x) is the sign of n . (x - p)
       // |n . (x - p)| <= |u| |v| |x - p| with |x - p| <= 2 (scene magnitude) for x in the scene;
       // the slack is 2^-30 of that bound, the arithmetic's error a few 2^-52.
@@ -437,33 +763,45 @@ class ShaftPlanes {
 
 // Decides, triangle by triangle, which patches may meet the shaft's interior and records them in
 // `hits`: the test of the top of this file, for the tree traversal and for candidate lists alike.
+// Ops gives the shaft's points and predicates:
+// DoubleOps for double points, PatchOps for elements whose vertices stand for points on their
+// patches; the exact contact step (probes, rational clipping) runs only on double points, and
+// without it a contact counts as a hit (partial), which is conservative.
+template <class Ops, class TriangleOf>
 class ShaftTest {
  public:
-  ShaftTest(const std::vector<Triangle>& triangles, const std::vector<int>& patch_of, std::span<const Facet> facets,
-            std::span<const Point> shaft_points, std::span<const std::pair<Point, Point>> probes, bool exact_contacts,
-            int patch_a, int patch_b, std::vector<int>* hits)
-      : triangles_(triangles), patch_of_(patch_of), facets_(facets), pts_(shaft_points), probes_(probes),
+  ShaftTest(const std::vector<Triangle>& triangles, const TriangleOf& triangle_of,
+                 const std::vector<int>& patch_of, const std::vector<int>& plane_of, std::array<int, 2> end_planes,
+                 std::span<const Facet<Ops>> facets, std::span<const typename Ops::P> shaft_points,
+                 std::span<const std::pair<Point, Point>> probes, bool exact_contacts, int patch_a, int patch_b,
+                 std::vector<int>* hits)
+      : triangles_(triangles), triangle_of_(triangle_of), patch_of_(patch_of), plane_of_(plane_of),
+        end_planes_(end_planes), facets_(facets), pts_(shaft_points), probes_(probes),
         exact_contacts_(exact_contacts), pa_(patch_a), pb_(patch_b), hits_(hits) {}
-
   void operator()(std::size_t index) {
     const int patch = patch_of_[index];
     if (patch == pa_ || patch == pb_) return;
+    // A triangle in the plane of an end's patch lies in a bounding plane of the shaft (the end
+    // polygons lie exactly in their patches' planes): it cannot meet the interior.
+    if (plane_of_[index] == end_planes_[0] || plane_of_[index] == end_planes_[1]) return;
     if (!hits_->empty() && hits_->back() == patch) return;  // the patch's other triangle: already a hit
-    const Triangle& t = triangles_[index];
-    for (const Facet& f : facets_)
+    const typename Ops::Tri t = triangle_of_(index);
+    for (const Facet<Ops>& f : facets_)
       if (f.side(t[0]) != CGAL::POSITIVE && f.side(t[1]) != CGAL::POSITIVE && f.side(t[2]) != CGAL::POSITIVE)
         return;  // a facet plane weakly separates t from the shaft
     bool pos = false, neg = false;
-    for (const Point& p : pts_) {
-      const CGAL::Orientation o = CGAL::orientation(t[0], t[1], t[2], p);
+    for (const auto& p : pts_) {
+      const CGAL::Orientation o = Ops::orient(t[0], t[1], t[2], p);
       pos |= o == CGAL::POSITIVE;
       neg |= o == CGAL::NEGATIVE;
     }
     if (!(pos && neg)) return;  // t's plane weakly separates the shaft from t
-    bool inside = true;
-    for (const Facet& f : facets_)
-      for (int k = 0; k < 3 && inside; ++k) inside = f.side(t[k]) == CGAL::POSITIVE;
-    if (!inside && exact_contacts_ && !probe_segment_hits(t) && !meets_interior_exactly(t)) return;  // touches only
+    if constexpr (std::is_same_v<Ops, DoubleOps>) {
+      bool inside = true;
+      for (const Facet<Ops>& f : facets_)
+        for (int k = 0; k < 3 && inside; ++k) inside = f.side(t[k]) == CGAL::POSITIVE;
+      if (!inside && exact_contacts_ && !probe_segment_hits(t) && !meets_interior_exactly(t)) return;  // touches only
+    }
     hits_->push_back(patch);
   }
 
@@ -483,14 +821,17 @@ class ShaftTest {
   static Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
   bool meets_interior_exactly(const Triangle& t) const {
     std::vector<std::array<Vec3, 3>> planes;
-    for (const Facet& f : facets_) planes.push_back({to_vec(f.p), to_vec(f.q), to_vec(f.r)});
+    for (const Facet<Ops>& f : facets_) planes.push_back({to_vec(f.p), to_vec(f.q), to_vec(f.r)});
     return detail::triangle_meets_interior({to_vec(t[0]), to_vec(t[1]), to_vec(t[2])}, planes);
   }
 
   const std::vector<Triangle>& triangles_;
+  const TriangleOf& triangle_of_;
   const std::vector<int>& patch_of_;
-  std::span<const Facet> facets_;
-  std::span<const Point> pts_;
+  const std::vector<int>& plane_of_;
+  std::array<int, 2> end_planes_;
+  std::span<const Facet<Ops>> facets_;
+  std::span<const typename Ops::P> pts_;
   std::span<const std::pair<Point, Point>> probes_;
   bool exact_contacts_;
   int pa_, pb_;
@@ -498,10 +839,11 @@ class ShaftTest {
 };
 
 // Traversal that hands every triangle whose box overlaps the shaft's box to a ShaftTest.
+template <class Test>
 class ShaftTraversal {
  public:
   ShaftTraversal(const std::vector<Triangle>& triangles, const std::vector<CGAL::Bbox_3>& boxes,
-                 const ShaftPlanes& planes, ShaftTest& test)
+                 const ShaftPlanes& planes, Test& test)
       : triangles_(triangles), boxes_(boxes), planes_(planes), test_(test) {}
   bool go_further() const { return true; }
   void intersection(const CGAL::Bbox_3&, const Primitive& primitive) {
@@ -517,25 +859,28 @@ class ShaftTraversal {
   const std::vector<Triangle>& triangles_;
   const std::vector<CGAL::Bbox_3>& boxes_;
   const ShaftPlanes& planes_;
-  ShaftTest& test_;
+  Test& test_;
 };
 
-bool CgalVisibility::patch_hides(int patch, std::span<const Point> a, std::span<const Point> b) const {
+template <class Ops>
+bool CgalVisibility::patch_hides(int patch, std::span<const typename Ops::P> a,
+                                 std::span<const typename Ops::P> b) const {
   const auto [begin, end] = patch_triangles_[patch];
+  const auto triangle = [&](int i) { return triangle_as<Ops>(static_cast<std::size_t>(i)); };
   // Every segment between a vertex of A and a vertex of B crosses the triangles [lo, hi), whose
   // union is convex and planar, strictly between its endpoints.
   auto separates = [&](int lo, int hi) {
-    const Triangle& t = triangles_[lo];
-    const CGAL::Orientation side_a = CGAL::orientation(t[0], t[1], t[2], a[0]);
+    const auto t = triangle(lo);
+    const CGAL::Orientation side_a = Ops::orient(t[0], t[1], t[2], a[0]);
     if (side_a == CGAL::COPLANAR) return false;
-    for (const Point& p : a)
-      if (CGAL::orientation(t[0], t[1], t[2], p) != side_a) return false;
-    for (const Point& p : b)
-      if (CGAL::orientation(t[0], t[1], t[2], p) != CGAL::opposite(side_a)) return false;
-    for (const Point& p : a)
-      for (const Point& q : b) {
+    for (const auto& p : a)
+      if (Ops::orient(t[0], t[1], t[2], p) != side_a) return false;
+    for (const auto& p : b)
+      if (Ops::orient(t[0], t[1], t[2], p) != CGAL::opposite(side_a)) return false;
+    for (const auto& p : a)
+      for (const auto& q : b) {
         bool crossed = false;
-        for (int i = lo; i < hi && !crossed; ++i) crossed = crossing_inside(p, q, triangles_[i]);
+        for (int i = lo; i < hi && !crossed; ++i) crossed = line_meets<Ops>(p, q, triangle(i));
         if (!crossed) return false;
       }
     return true;
@@ -546,61 +891,72 @@ bool CgalVisibility::patch_hides(int patch, std::span<const Point> a, std::span<
   return false;
 }
 
-PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a, std::span<const Point> b,
-                                           int patch_b, const std::vector<int>* candidates,
-                                           std::vector<int>* occluders) const {
+template <class Ops>
+PairClass CgalVisibility::classify_points(std::span<const typename Ops::P> a, int patch_a,
+                                          std::span<const typename Ops::P> b, int patch_b, const CGAL::Bbox_3& box,
+                                          bool ends_on_patches, const std::vector<int>* candidates,
+                                          std::vector<int>* occluders) const {
   if (occluders != nullptr) occluders->clear();
+  using P = typename Ops::P;
   // Facing: some point of each must lie strictly in front of the other's plane.
-  if (a.size() >= 3 && !any_strictly_in_front(a, b)) return PairClass::kFacingAway;
-  if (!any_strictly_in_front(b, a)) return PairClass::kFacingAway;
-  std::vector<Point> pts(a.begin(), a.end());
+  if (a.size() >= 3 && !any_strictly_in_front<Ops>(a, b)) return PairClass::kFacingAway;
+  if (!any_strictly_in_front<Ops>(b, a)) return PairClass::kFacingAway;
+  std::vector<P> pts(a.begin(), a.end());
   pts.insert(pts.end(), b.begin(), b.end());
-  std::vector<Facet> facets = hull_facets(pts, a.size());
+  std::vector<Facet<Ops>> facets = hull_facets<Ops>(pts, a.size());
   if (facets.empty()) return PairClass::kFacingAway;  // coplanar: no segment leaves the plane
   // Only mutually facing pairs matter (estimate() counts no other), and they join A' to B' (see
   // the top of this file): the closed front half-spaces of both planes bound their shaft too.
-  for (std::span<const Point> poly : {a, b}) {
+  for (std::span<const P> poly : {a, b}) {
     if (poly.size() < 3) continue;
-    const auto t = plane_triple(poly);
+    const auto t = plane_triple<Ops>(poly);
     if (t[0] >= 0) facets.push_back({poly[t[0]], poly[t[1]], poly[t[2]]});
   }
-  // Probe segments strictly inside the shaft, near each vertex pair (see probe_segment_hits).
-  // The explicit return type matters: deduced, it would be an Eigen expression referring to a
-  // Vec3 temporary that dies with the call (AddressSanitizer: stack-use-after-scope).
-  auto mean = [](std::span<const Point> p) -> Vec3 {
-    double x = 0, y = 0, z = 0;
-    for (const Point& q : p) x += q.x(), y += q.y(), z += q.z();
-    return Vec3(x, y, z) / double(p.size());
-  };
-  const Vec3 centre = 0.5 * (mean(a) + mean(b));
-  auto toward_centre = [&](const Point& p) {
-    return to_point(0.9 * Vec3(p.x(), p.y(), p.z()) + 0.1 * centre);
-  };
-  auto strictly_inside = [&](const Point& p) {
-    return std::all_of(facets.begin(), facets.end(), [&](const Facet& f) { return f.side(p) == CGAL::POSITIVE; });
-  };
   std::vector<std::pair<Point, Point>> probes;
-  for (const Point& p : a)
-    for (const Point& q : b) {
-      if (!options_.exact_shaft_contacts) break;
-      const Point u = toward_centre(p), v = toward_centre(q);
-      if (strictly_inside(u) && strictly_inside(v)) probes.emplace_back(u, v);
-    }
+  if constexpr (std::is_same_v<Ops, DoubleOps>) {
+    // Probe segments strictly inside the shaft, near each vertex pair (see probe_segment_hits).
+    // The explicit return type matters: deduced, it would be an Eigen expression referring to a
+    // Vec3 temporary that dies with the call (AddressSanitizer: stack-use-after-scope).
+    auto mean = [](std::span<const Point> p) -> Vec3 {
+      double x = 0, y = 0, z = 0;
+      for (const Point& q : p) x += q.x(), y += q.y(), z += q.z();
+      return Vec3(x, y, z) / double(p.size());
+    };
+    const Vec3 centre = 0.5 * (mean(a) + mean(b));
+    auto toward_centre = [&](const Point& p) { return to_point(0.9 * Vec3(p.x(), p.y(), p.z()) + 0.1 * centre); };
+    auto strictly_inside = [&](const Point& p) {
+      return std::all_of(facets.begin(), facets.end(), [&](const Facet<Ops>& f) { return f.side(p) == CGAL::POSITIVE; });
+    };
+    for (const Point& p : a)
+      for (const Point& q : b) {
+        if (!options_.exact_shaft_contacts) break;
+        const Point u = toward_centre(p), v = toward_centre(q);
+        if (strictly_inside(u) && strictly_inside(v)) probes.emplace_back(u, v);
+      }
+  }
   std::vector<int> hits;
-  ShaftTest test(triangles_, triangle_patch_, facets, pts, probes, options_.exact_shaft_contacts, patch_a, patch_b,
-                 &hits);
-  const CGAL::Bbox_3 shaft_box = bbox_of(pts);
-  const ShaftPlanes planes(facets, magnitude_);
+  const auto triangle_of = [this](std::size_t i) { return triangle_as<Ops>(i); };
+  // The planes of the ends' patches, when the polygons lie in them exactly (classify() sends
+  // elements on their patches' surfaces here; a non-planar patch has no one plane).
+  const auto end_plane = [&](int patch, std::size_t count) {
+    if (!ends_on_patches || patch < 0 || count < 3 || !patch_planar_[static_cast<std::size_t>(patch)]) return -2;
+    const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
+    return begin < end ? triangle_plane_[static_cast<std::size_t>(begin)] : -2;
+  };
+  ShaftTest<Ops, decltype(triangle_of)> test(
+      triangles_, triangle_of, triangle_patch_, triangle_plane_, {end_plane(patch_a, a.size()), end_plane(patch_b, b.size())},
+      facets, pts, probes, options_.exact_shaft_contacts, patch_a, patch_b, &hits);
+  const ShaftPlanes planes(std::span<const Facet<Ops>>(facets), magnitude_);
   if (candidates == nullptr) {
     ShaftTraversal traversal(triangles_, triangle_boxes_, planes, test);
-    if (!triangles_.empty()) tree_.traversal(shaft_box, traversal);
+    if (!triangles_.empty()) tree_.traversal(box, traversal);
   } else {
     for (const int patch : *candidates) {
       if (patch == patch_a || patch == patch_b) continue;
       const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
       for (int i = begin; i < end; ++i) {
-        const CGAL::Bbox_3& box = triangle_boxes_[static_cast<std::size_t>(i)];
-        if (CGAL::do_overlap(shaft_box, box) && !planes.outside(box)) test(static_cast<std::size_t>(i));
+        const CGAL::Bbox_3& triangle_box = triangle_boxes_[static_cast<std::size_t>(i)];
+        if (CGAL::do_overlap(box, triangle_box) && !planes.outside(triangle_box)) test(static_cast<std::size_t>(i));
       }
     }
   }
@@ -609,8 +965,38 @@ PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a
   hits.erase(std::unique(hits.begin(), hits.end()), hits.end());
   if (occluders != nullptr) *occluders = hits;
   for (int patch : hits)
-    if (patch_hides(patch, a, b)) return PairClass::kFullyHidden;
+    if (patch_hides<Ops>(patch, a, b)) return PairClass::kFullyHidden;
   return PairClass::kPartial;
+}
+
+PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a, std::span<const Point> b,
+                                           int patch_b, bool ends_on_patches, const std::vector<int>* candidates,
+                                           std::vector<int>* occluders) const {
+  std::vector<Point> pts(a.begin(), a.end());
+  pts.insert(pts.end(), b.begin(), b.end());
+  return classify_points<DoubleOps>(a, patch_a, b, patch_b, bbox_of(pts), ends_on_patches, candidates, occluders);
+}
+
+PairClass CgalVisibility::classify_on_patches(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b,
+                                              int patch_b, const std::vector<int>* candidates,
+                                              std::vector<int>* occluders) const {
+  // Each vertex stands for its projection onto its patch's surface (end_on()): the element the
+  // solvers meant, whose vertices the doubles only approximate. Every predicate about those
+  // points is exact (PatchOps).
+  CGAL::Protect_FPU_rounding<true> upward;  // for PatchOps's intervals
+  std::vector<PatchPoint> pa, pb;
+  CGAL::Bbox_3 box;
+  for (int side = 0; side < 2; ++side)
+    for (const Vec3& v : side == 0 ? a : b) {
+      const int patch = side == 0 ? patch_a : patch_b;
+      const PatchEnd e = end_on(to_point(v), patch);
+      PatchPoint q = patch_point(to_point(v), e.end.plane, e.end.axis);
+      box += q.box.bbox();
+      (side == 0 ? pa : pb).push_back(std::move(q));
+    }
+  pa = drop_collinear<PatchOps>(std::move(pa));
+  pb = drop_collinear<PatchOps>(std::move(pb));
+  return classify_points<PatchOps>(pa, patch_a, pb, patch_b, box, true, candidates, occluders);
 }
 
 VisibilityEstimate CgalVisibility::estimate(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b,

@@ -16,6 +16,13 @@ namespace hrad {
 /// How a pair of polygons sees each other, decided before any ray is cast.
 enum class PairClass { kFacingAway, kFullyVisible, kFullyHidden, kPartial };
 
+/// Whether light passes between a point of one patch and a point of another (Visibility::sight()).
+enum class Sight {
+  kFacingAway,  ///< a point is off its patch, or not strictly in front of the other's patch there
+  kBlocked,     ///< facing, and the open segment between them meets another patch
+  kVisible,     ///< facing, and nothing between them
+};
+
 /// Fraction of the pair that is mutually visible, with an error estimate.
 struct VisibilityEstimate {
   double fraction = 1.0;  ///< in [0, 1]
@@ -47,8 +54,26 @@ class Visibility {
  public:
   virtual ~Visibility() = default;
 
-  /// True iff the open segment a-b meets a patch other than `patch_a` and `patch_b`.
+  /// True iff the open segment a-b meets a patch other than `patch_a` and `patch_b`. An end that
+  /// names its patch (>= 0) lies on it, to the rounding of its doubles: it stands for the point of
+  /// the patch's surface with the same coordinates across the patch's dominant normal axis (exactly
+  /// the double point when that lies on the surface), and the segment is decided between those
+  /// points exactly. So a zero-thickness wall's back-to-back twin, or a closed surface around the
+  /// patch, never blocks or lets through a segment by which side of the plane a rounded sample
+  /// point fell on. An end with patch -1 is the double point itself.
   virtual bool segment_blocked(const Vec3& a, int patch_a, const Vec3& b, int patch_b) const = 0;
+
+  /// Light transport between the point `a` of patch `patch_a` and the point `b` of patch `patch_b`
+  /// (both >= 0; the points stand for points of their patches as in segment_blocked()), decided
+  /// exactly: kFacingAway unless both points lie on their patches and each lies strictly in
+  /// front of the other's patch there (positive cosines at both ends); then kBlocked or
+  /// kVisible as segment_blocked() says. What sampled form factors count: with exact facing as
+  /// well as exact occlusion, no pair of points can carry light through a closed surface, however
+  /// the points' doubles were rounded. Counted as a segment query.
+  virtual Sight sight(const Vec3& a, int patch_a, const Vec3& b, int patch_b) const = 0;
+  /// sight() where only the patches `occluders` can block (as segment_blocked_among()).
+  virtual Sight sight_among(const Vec3& a, int patch_a, const Vec3& b, int patch_b,
+                            std::span<const int> occluders) const = 0;
 
   /// Classifies a pair by shaft culling (Haines & Wallace 1994) with exact predicates.
   virtual PairClass classify(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b) const = 0;
