@@ -46,12 +46,18 @@ double width(const std::array<double, 6>& b) {
 }  // namespace
 
 OnPatchSegment::OnPatchSegment(const SegmentEnd& a, const SegmentEnd& b) : a_(a), b_(b) {
-  CGAL::Protect_FPU_rounding<true> upward;
-  const IK::Point_3 pa = plane_point<IK>(a.plane, a.axis, a.x), pb = plane_point<IK>(b.plane, b.axis, b.x);
-  for (int k = 0; k < 3; ++k) {
-    a_bounds_[2 * k] = pa[k].inf(), a_bounds_[2 * k + 1] = pa[k].sup();
-    b_bounds_[2 * k] = pb[k].inf(), b_bounds_[2 * k + 1] = pb[k].sup();
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const IK::Point_3 pa = plane_point<IK>(a.plane, a.axis, a.x), pb = plane_point<IK>(b.plane, b.axis, b.x);
+    for (int k = 0; k < 3; ++k) {
+      a_bounds_[2 * k] = pa[k].inf(), a_bounds_[2 * k + 1] = pa[k].sup();
+      b_bounds_[2 * k] = pb[k].inf(), b_bounds_[2 * k + 1] = pb[k].sup();
+    }
   }
+  // The filter's points and their reach (misses()), once per segment rather than per triangle.
+  a_mid_ = middle(a_bounds_);
+  b_mid_ = middle(b_bounds_);
+  reach_ = std::max(width(a_bounds_), width(b_bounds_));
 }
 
 template <class Decide>
@@ -76,8 +82,9 @@ bool OnPatchSegment::misses(const Triangle3& t, bool a_in_plane, bool b_in_plane
   // The cheap answers of meets() in doubles, taken only where the filter makes them certain for
   // the exact points: both ends strictly on one side of t's plane, or the segment's line passing
   // beside t. Most candidate triangles of a ray are settled here, without a rounding-mode switch.
-  const Vec3 pa = middle(a_bounds_), pb = middle(b_bounds_);
-  const double w = std::max(width(a_bounds_), width(b_bounds_));
+  const Vec3& pa = a_mid_;
+  const Vec3& pb = b_mid_;
+  const double w = reach_;
   if (!a_in_plane && !b_in_plane) {
     const int oa = certain_orientation(t[0], t[1], t[2], pa, w), ob = certain_orientation(t[0], t[1], t[2], pb, w);
     if (oa != 0 && oa == ob) return true;
