@@ -37,6 +37,10 @@
 //                          rooms, one term per leaf and link on its path)
 //   --threads N            worker threads (default: all cores)
 //   --report R.json        the solve report (see lib/hrad/report/report_json.h)
+// Every solve prints where the power went (reference/power_balance.h): emitted, absorbed, onto
+// backs, escaped (the last ones sampled with rays of the reference's own), and the residual; a
+// residual above kPowerBalanceTolerance of the emitted power (plus 4 standard errors of the sampled
+// terms) is a warning on stderr and in the report.
 //   --out S.ply            the leaf mesh with tone-mapped vertex colours and per-face radiosity
 //   --exposure X           vertex-colour exposure for --out (default: automatic, emitters excluded)
 //   --quiet                no progress on stderr
@@ -138,9 +142,28 @@ void add_solve_command(CLI::App& app) {
     outputs.check_inputs(inputs);
     Solution solution;
     const SolveSummary summary = solve(scene, o, &solution);
+    // Where the power went, checked with rays of the reference's own (reference/power_balance.h).
+    const PowerBalance balance = power_balance(scene, solution);
+    const double emitted = balance.emitted.mean();
+    const auto share = [&](const Rgb& v) { return emitted > 0.0 ? v.mean() / emitted : 0.0; };
+    const std::string balance_line = fmt::format(
+        "power: emitted {:.6g}; absorbed {:.6f} (reflecting surfaces {:.6f}, black {:.6f}), onto backs {:.6f}, "
+        "escaped {:.6f} (sampled, standard error {:.2g}); residual {:.3g} of the emitted power",
+        emitted, share(balance.absorbed_reflecting + balance.absorbed_black), share(balance.absorbed_reflecting),
+        share(balance.absorbed_black), share(balance.onto_backs), share(balance.escaped), share(balance.sampled_se),
+        share(balance.residual));
+    if (!balance.balanced()) {
+      warnings.push_back(fmt::format(
+          "{}: warning: the solution does not balance power: {} of the emitted power is unaccounted for (allowed {:.3g}: "
+          "{} plus {} standard errors); refine (--feps, --aeps, --max-area) or try --kernel analytic",
+          scene.path, fmt::format("{:.3g}", balance.relative_residual()), balance.allowed(), kPowerBalanceTolerance,
+          kPowerBalanceStandardErrors));
+      std::cerr << warnings.back() << "\n";
+    }
 
     if (!args->report.empty()) {
       nlohmann::json report = solve_report_json(scene, o, summary, solution);
+      report["power_balance"] = power_balance_json(balance);
       report["warnings"] = warnings;  // the reader's and the scene checks', as printed on stderr
       write_json_file(args->report, report);
     }
@@ -158,6 +181,7 @@ void add_solve_command(CLI::App& app) {
                              scene.path, to_string(summary.method), summary.patches, summary.elements, summary.links,
                              summary.form_factor_evaluations, summary.visibility_queries);
     std::cout << fmt::format("  {}: {}\n", to_string(summary.termination), summary.message);
+    std::cout << "  " << balance_line << "\n";
     std::string phases;
     for (const auto& [name, s] : summary.seconds) phases += fmt::format(" {} {:.3f}", name, s);
     std::cout << fmt::format("  seconds: total {:.3f} ({} )\n", summary.total_seconds, phases);

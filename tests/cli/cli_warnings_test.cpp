@@ -85,5 +85,31 @@ TEST(CliWarnings, SolutionGivenAsASceneSaysWhatItIs) {
   EXPECT_NE(r.err.find("this is a solution written by 'hrad solve'"), std::string::npos) << r.err;
 }
 
+// Every solve prints and reports where the power went (reference/power_balance.h). The closed box
+// solved by the full matrix with the analytic kernel balances (no warning, the report's residual
+// within the allowance); the same box solved hierarchically and stopped after one iteration has absorbed only the first bounces, and the lost power is a
+// warning on stderr and in the report.
+TEST(CliWarnings, PowerThatDoesNotBalanceIsAWarning) {
+  TempDir dir;
+  dir.write("box.mtl", kMtl);
+  const std::string obj = dir.write("box.obj", box_obj(false, "Lamp"));
+  RunResult r = run_hrad("solve " + obj + " --method full --kernel analytic --quiet --report " + dir.path("ok.json"), dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("power: emitted 0.4;"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err.find("does not balance power"), std::string::npos) << r.err;
+  nlohmann::json report = nlohmann::json::parse(slurp(dir.path("ok.json")));
+  EXPECT_TRUE(report["power_balance"]["balanced"].get<bool>()) << report["power_balance"].dump();
+  EXPECT_NEAR(report["power_balance"]["emitted"].get<double>(), 10 * 0.2 * 0.2, 1e-9);
+  EXPECT_EQ(report["power_balance"]["escaped"].get<double>(), 0.0);  // closed
+  r = run_hrad("solve " + obj + " --quiet --max-iterations 1 --report " + dir.path("short.json"), dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("does not balance power"), std::string::npos) << r.err;
+  report = nlohmann::json::parse(slurp(dir.path("short.json")));
+  EXPECT_FALSE(report["power_balance"]["balanced"].get<bool>());
+  EXPECT_GT(report["power_balance"]["relative_residual"].get<double>(), 0.1);
+  ASSERT_EQ(report["warnings"].size(), 1u);
+  EXPECT_NE(report["warnings"][0].get<std::string>().find("does not balance power"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace hrad::test

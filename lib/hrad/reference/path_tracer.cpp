@@ -15,6 +15,8 @@ double power_heuristic(double a, double b) {
   return a2 / (a2 + b2);
 }
 
+}  // namespace
+
 // A direction with density cos(theta) / pi about n: a uniform point on the unit disc lifted to the
 // hemisphere (Malley's method; Pharr, Jakob & Humphreys, "Physically Based Rendering", 4th ed., sec. A.5.3).
 Vec3 cosine_direction(const Vec3& n, Rng& rng) {
@@ -23,8 +25,6 @@ Vec3 cosine_direction(const Vec3& n, Rng& rng) {
   const auto [s, t] = plane_basis(n);
   return (r * std::cos(phi)) * s + (r * std::sin(phi)) * t + std::sqrt(std::max(0.0, 1.0 - u)) * n;
 }
-
-}  // namespace
 
 PathTracer::PathTracer(const EmbreeScene& rays, int max_depth, int roulette_depth)
     : rays_(rays), scene_(rays.scene()), max_depth_(max_depth), roulette_depth_(roulette_depth) {

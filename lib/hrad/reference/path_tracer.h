@@ -37,6 +37,9 @@
 
 namespace hrad::detail {
 
+/// A direction with density cos(theta) / pi about the unit normal n (Malley's method).
+Vec3 cosine_direction(const Vec3& n, Rng& rng);
+
 class PathTracer {
  public:
   PathTracer(const EmbreeScene& rays, int max_depth, int roulette_depth);

@@ -101,6 +101,20 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
   return j;
 }
 
+nlohmann::json power_balance_json(const PowerBalance& b) {
+  return {{"emitted", b.emitted.mean()},
+          {"absorbed_reflecting", b.absorbed_reflecting.mean()},
+          {"absorbed_black", b.absorbed_black.mean()},
+          {"onto_backs", b.onto_backs.mean()},
+          {"escaped", b.escaped.mean()},
+          {"sampled_se", b.sampled_se.mean()},
+          {"residual", b.residual.mean()},
+          {"relative_residual", b.relative_residual()},
+          {"allowed", b.allowed()},
+          {"balanced", b.balanced()},
+          {"rays", b.rays}};
+}
+
 void write_json_file(const std::string& path, const nlohmann::json& report) {
   write_file_atomically(path, [&](std::ostream& out) { out << report.dump(2) << "\n"; });
 }

@@ -7,6 +7,7 @@
 
 #include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
+#include "hrad/reference/power_balance.h"
 #include "hrad/solvers/solve.h"
 
 namespace hrad {
@@ -22,11 +23,17 @@ namespace hrad {
 ///   seconds {total, <phase>: s, ...}, effects {visibility, color_channels, bounces, cull_facing_away, reasons},
 ///   change_per_iteration [..], peak_memory_bytes, figures {name: value},
 ///   energy {emitted_power, radiosity_power}: sums of area * E and area * B over the elements (channel means),
+///   power_balance (power_balance_json(); written by `hrad solve`, which also prints it),
 ///   patches: one entry per input face (Scene::faces) in file order:
 ///     {face, line, group, material, area, emission [r,g,b], reflectance [r,g,b], radiosity [r,g,b]}
 ///     where radiosity is the area average over the face's patches.
 nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options, const SolveSummary& summary,
                                  const Solution& solution);
+
+/// The power balance (reference/power_balance.h) as the report's `power_balance` entry:
+///   {emitted, absorbed_reflecting, absorbed_black, onto_backs, escaped, sampled_se, residual}: channel
+///   means in power units; relative_residual, allowed (shares of the emitted power), balanced, rays.
+nlohmann::json power_balance_json(const PowerBalance& balance);
 
 /// Writes `report` (indented) to `path` atomically; hrad::Error naming `path` on failure.
 void write_json_file(const std::string& path, const nlohmann::json& report);
