@@ -33,7 +33,7 @@ void fill_matrix(SolverContext& ctx, const ElementHierarchy& h, const std::vecto
   const FormFactorEvaluator& evaluator = ctx.evaluator();
   const long long total_pairs = static_cast<long long>(n) * (n - 1) / 2;
   ProgressReporter progress("full: form factors", static_cast<std::uint64_t>(total_pairs), "pairs",
-                            ctx.options().progress);
+                            ctx.options().progress, ctx.options().progress_interval_seconds);
   tbb::parallel_for(tbb::blocked_range<int>(0, n, 1), [&](const tbb::blocked_range<int>& range) {
     for (int i = range.begin(); i < range.end(); ++i) {
       const ElementNode& a = h.node(leaves[static_cast<std::size_t>(i)]);

@@ -124,7 +124,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     RefineResult refined;
     {
       auto phase = ctx.phase("refine");
-      refined = refine(h, tree.get(), oracle, std::move(work), [&](std::string_view line) { ctx.progress(line); });
+      refined = refine(h, tree.get(), oracle, std::move(work), [&](std::string_view line) { ctx.progress(line); },
+                       options.progress_interval_seconds);
     }
     ++passes;
     candidates += refined.candidates;

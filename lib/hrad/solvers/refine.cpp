@@ -27,12 +27,14 @@ namespace {
 
 // Refines `work` breadth-first until every pair is linked or dropped (see refine()).
 void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const RefinementOracle& oracle, std::vector<Candidate> work,
-                   const std::function<void(std::string_view)>& progress, RefineResult& result) {
+                   const std::function<void(std::string_view)>& progress, double progress_interval,
+                   RefineResult& result) {
   std::vector<Candidate> next;
   int level = 0;
   while (!work.empty()) {
     // A level of a large scene takes minutes: its pairs decided so far, with an estimate.
-    ProgressReporter decided(fmt::format("refine: level {}", level + 1), work.size(), "pairs", progress);
+    ProgressReporter decided(fmt::format("refine: level {}", level + 1), work.size(), "pairs", progress,
+                             progress_interval);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 16),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) oracle.decide(work[i]);
@@ -129,15 +131,16 @@ std::vector<Candidate> shadowed(const ElementHierarchy& h, const RefinementOracl
 }  // namespace
 
 RefineResult refine(ElementHierarchy& h, const ClusterTree* tree, const RefinementOracle& oracle,
-                    std::vector<Candidate> work, const std::function<void(std::string_view)>& progress) {
+                    std::vector<Candidate> work, const std::function<void(std::string_view)>& progress,
+                    double progress_interval_seconds) {
   RefineResult result;
   const std::size_t nodes_before = h.size();
-  refine_levels(h, tree, oracle, std::move(work), progress, result);
+  refine_levels(h, tree, oracle, std::move(work), progress, progress_interval_seconds, result);
   for (int pass = 0; pass < kShadowPasses; ++pass) {
     std::vector<Candidate> again = shadowed(h, oracle, result.links);
     if (again.empty()) break;
     if (progress) progress(fmt::format("refine: {} partly visible links under shadowed leaves refined again", again.size()));
-    refine_levels(h, tree, oracle, std::move(again), progress, result);
+    refine_levels(h, tree, oracle, std::move(again), progress, progress_interval_seconds, result);
   }
   result.new_nodes = h.size() - nodes_before;
   return result;

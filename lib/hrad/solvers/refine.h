@@ -49,7 +49,8 @@ struct RefineResult {
 /// leaf gathers (its links' factors in the same weighted units, summed the same way), the partial
 /// links of its ancestors are refined again with the receiver split, up to kShadowPasses times.
 RefineResult refine(ElementHierarchy& hierarchy, const ClusterTree* tree, const RefinementOracle& oracle,
-                    std::vector<Candidate> work, const std::function<void(std::string_view)>& progress);
+                    std::vector<Candidate> work, const std::function<void(std::string_view)>& progress,
+                    double progress_interval_seconds = 2.0);
 
 /// Re-refinement passes of refine() for shadowed leaves.
 inline constexpr int kShadowPasses = 3;

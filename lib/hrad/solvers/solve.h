@@ -92,6 +92,9 @@ struct SolveOptions {
   int threads = 0;
   /// Called with one line of progress for long phases (the CLI prints it on stderr); may be empty.
   std::function<void(std::string_view)> progress;
+  /// Seconds between two progress lines of one phase (and from its start to its first line): short
+  /// work prints nothing. 0 prints a line at every step (for tests).
+  double progress_interval_seconds = 2.0;
 };
 
 /// Automatic max_area = total area / kAutoElements (full matrix and substructuring): 492 elements

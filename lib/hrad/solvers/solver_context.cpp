@@ -96,19 +96,19 @@ bool SolverContext::record_iteration(double change) {
 }
 
 void SolverContext::report_iteration(double change) {
-  // A line every kIterationLineSeconds of iterating (none for a solve that converges sooner), with
-  // the iterations still needed at the geometric rate of the last kRateWindow iterations.
-  constexpr double kIterationLineSeconds = 2.0;
+  // A line every progress_interval_seconds of iterating (none for a solve that converges sooner),
+  // with the iterations still needed at the geometric rate of the last kRateWindow iterations.
+  const double interval = options_.progress_interval_seconds;
   constexpr int kRateWindow = 20;
   const int k = summary_.iterations;
   if (k == 1) {
     first_iteration_at_ = total_.seconds();
-    next_iteration_line_at_ = first_iteration_at_ + kIterationLineSeconds;
+    next_iteration_line_at_ = first_iteration_at_ + interval;
     return;
   }
   const double now = total_.seconds();
   if (now < next_iteration_line_at_) return;
-  next_iteration_line_at_ = now + kIterationLineSeconds;
+  next_iteration_line_at_ = now + interval;
   const std::vector<double>& changes = summary_.change_per_iteration;
   const int back = std::min(kRateWindow, k - 1);
   const std::optional<double> left =

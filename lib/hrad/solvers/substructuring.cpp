@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "hrad/core/progress.h"
 #include "hrad/solvers/dense_links.h"
 #include "hrad/solvers/iteration.h"
 #include "hrad/solvers/push_pull.h"
@@ -61,6 +62,9 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
     auto phase = ctx.phase("form_factors");
     const FormFactorEvaluator& evaluator = ctx.evaluator();
     Eigen::Map<DenseLinks::RowMatrix> f = links.matrix();
+    // n N kernel calls: minutes for a fine mesh, so its rows done with an estimate of the time left.
+    ProgressReporter progress("substructure: form factors", static_cast<std::uint64_t>(factors), "factors",
+                              options.progress, options.progress_interval_seconds);
     tbb::parallel_for(tbb::blocked_range<int>(0, n, 4), [&](const tbb::blocked_range<int>& range) {
       for (int i = range.begin(); i < range.end(); ++i) {
         const ElementNode& a = h.node(elements[static_cast<std::size_t>(i)]);
@@ -70,8 +74,10 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
                         ? 0.0
                         : evaluator.estimate(a.polygon(), a.patch, s.polygon(), s.patch).value;
         }
+        progress.advance(static_cast<std::uint64_t>(big_n));
       }
     });
+    progress.finish();
   }
   ctx.summary().work.gather_terms = links.terms();
   ctx.summary().work.link_bytes = links.bytes();
