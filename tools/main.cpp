@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "hrad/core/error.h"
+#include "hrad/core/memory.h"
 #include "hrad/version.h"
 
 int main(int argc, char** argv) {
@@ -54,6 +55,11 @@ int main(int argc, char** argv) {
     // Sizes are checked up front (solvers/work_estimate.h, render, scene generate); this is what slipped by.
     std::string running = "hrad";
     for (const CLI::App* sub : app.get_subcommands()) running = sub->get_name();
+    // What was being allocated and the option that makes it smaller, when the work named it.
+    if (const std::string failed = hrad::failed_allocation(); !failed.empty()) {
+      std::fprintf(stderr, "hrad: error: out of memory in '%s' while allocating %s\n", running.c_str(), failed.c_str());
+      return 1;
+    }
     std::fprintf(stderr,
                  "hrad: error: out of memory in '%s': make the work smaller (solve: a larger --aeps or --max-area; "
                  "render: a smaller --width/--height; scene generate: fewer --polygons)\n",

@@ -225,6 +225,9 @@ void add_render_command(CLI::App& app) {
       outputs.check_inputs(inputs);
       check_solution_patches(solution, args->solution, *scene, args->scene);
     }
+    const AllocationScope allocating(
+        fmt::format("the {} x {} image at {} samples per pixel", args->width, args->height, args->samples_per_pixel),
+        "render smaller (--width, --height, --samples-per-pixel)");
     Image image;
     std::optional<HdrImage> linear;
     if (args->final_gather) {

@@ -69,6 +69,7 @@ void add_scene_command(CLI::App& app) {
     OutputFiles outputs;
     outputs.declare("--out", args->out);
     outputs.declare("the material library beside --out", generated_mtl_path(args->out));
+    const AllocationScope allocating(fmt::format("the {} generated polygons", args->polygons), "ask for fewer --polygons");
     const GeneratedScene scene = args->kind == "urban" ? generate_urban({args->polygons, seed}) : generate_scene(o);
     write_generated_scene(scene, args->out, [](std::string_view line) { std::cerr << "hrad " << line << "\n"; });
     outputs.commit();

@@ -176,5 +176,23 @@ TEST_P(CliBadInput, OneLineErrorNonZeroExitNothingWritten) {
 INSTANTIATE_TEST_SUITE_P(AllSubcommands, CliBadInput, ::testing::ValuesIn(kCases),
                          [](const auto& info) { return info.param.name; });
 
+// A solve whose estimate fits but whose work does not (a 4000-polygon office under a 250 MB address
+// space: the refinement's links outgrow it): the allocation failure is one line naming what was being
+// allocated and the option that makes it smaller, exit 1, nothing written.
+TEST(CliOutOfMemory, NamesWhatWasBeingAllocatedAndTheOption) {
+  TempDir dir;
+  const std::string d = dir.root().string();
+  ASSERT_EQ(run_hrad("scene generate --polygons 4000 --out " + d + "/o.obj", dir).exit_code, 0);
+  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 250000; '" HRAD_EXECUTABLE "' solve " + d +
+                                   "/o.obj --threads 1 --quiet --out " + d + "/s.ply --report " + d + "/r.json",
+                               dir);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const auto lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << r.err;
+  EXPECT_EQ(lines[0].rfind("hrad: error: out of memory in 'solve' while allocating the ", 0), 0u) << lines[0];
+  EXPECT_NE(lines[0].find(": raise --aeps"), std::string::npos) << lines[0];
+  EXPECT_EQ(dir.entries(), 2u) << "an output (or temporary) file was left behind";
+}
+
 }  // namespace
 }  // namespace hrad::test

@@ -11,6 +11,8 @@
 
 #include <fmt/format.h>
 
+#include "hrad/core/memory.h"
+
 #include "hrad/core/error.h"
 #include "hrad/io/input_file.h"
 #include "hrad/io/ply_file.h"
@@ -129,6 +131,7 @@ Scene read_ply_scene(const std::string& path, std::vector<std::string>* warnings
 
 Scene read_scene(const std::string& path, std::vector<std::string>* warnings, const ObjReadOptions& options) {
   const std::string ext = lower_extension(path);
+  const AllocationScope allocating(fmt::format("the scene read from {}", path), "read a smaller scene");
   if (ext == ".ply") return read_ply_scene(path, warnings, options);
   if (ext == ".gltf" || ext == ".glb") return read_gltf_scene(path, warnings, options);
   return read_obj_scene(path, warnings, options);

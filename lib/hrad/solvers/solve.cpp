@@ -68,6 +68,9 @@ SolveSummary solve(const Scene& scene, const SolveOptions& options, Solution* ou
   validate_options(options);
   // Before any meshing: refuse what cannot fit or would take days, naming the option to change.
   check_work(estimate_work(scene, options), to_string(options.method), available_memory_bytes());
+  // Each phase names what it allocates (SolverContext::Phase); this covers the rest of the solve.
+  const AllocationScope allocating(fmt::format("the {} solve", to_string(options.method)),
+                                   smaller_work(options.method));
   switch (options.method) {
     case Method::kFull:
       return solve_full_matrix(scene, options, out);

@@ -56,6 +56,20 @@ void SolverContext::add_seconds(const std::string& name, double seconds) {
   summary_.seconds.emplace_back(name, seconds);
 }
 
+std::string SolverContext::allocating_in(const std::string& phase) const {
+  // The largest arrays each phase makes.
+  if (phase == "mesh") return "the elements";
+  if (phase == "form_factors") return "the form-factor matrix";
+  if (phase == "clusters") return "the cluster tree";
+  if (phase == "refine") return "the links of the refinement";
+  if (phase == "links") return "the link operators";
+  if (phase == "solve")
+    return method() == Method::kFull && options_.linear_solver == LinearSolver::kLu ? "the LU factors of the system"
+                                                                                     : "the radiosity arrays";
+  if (phase == "output") return "the solution's leaf mesh";
+  return fmt::format("the {} phase", phase);
+}
+
 void SolverContext::progress(std::string_view line) const {
   if (options_.progress) options_.progress(line);
 }

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "hrad/core/memory.h"
 #include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
 #include "hrad/core/stopwatch.h"
@@ -27,6 +28,7 @@
 #include "hrad/solvers/effects.h"
 #include "hrad/solvers/form_factor_evaluator.h"
 #include "hrad/solvers/solve.h"
+#include "hrad/solvers/work_estimate.h"
 
 namespace hrad {
 
@@ -55,12 +57,16 @@ class SolverContext {
   double max_area() const;
   /// Channels to compute: 1 (then copy channel 0 to 1 and 2 with copy_gray()) or 3.
   int channels() const { return summary_.effects.color_channels; }
+  Method method() const { return summary_.method; }
+  /// What a phase ("mesh", "refine", ...) allocates, for an out-of-memory message: "the links of the refinement".
+  std::string allocating_in(const std::string& phase) const;
 
   /// Times a phase from construction to destruction into summary.seconds (added to an existing
   /// entry of the same name).
   class Phase {
    public:
-    Phase(SolverContext& ctx, std::string name) : ctx_(ctx), name_(std::move(name)) {}
+    Phase(SolverContext& ctx, std::string name)
+        : ctx_(ctx), name_(std::move(name)), allocating_(ctx.allocating_in(name_), smaller_work(ctx.method())) {}
     ~Phase() { ctx_.add_seconds(name_, watch_.seconds()); }
     Phase(const Phase&) = delete;
     Phase& operator=(const Phase&) = delete;
@@ -68,6 +74,7 @@ class SolverContext {
    private:
     SolverContext& ctx_;
     std::string name_;
+    AllocationScope allocating_;  ///< names the phase if it runs out of memory
     Stopwatch watch_;
   };
   Phase phase(std::string name) { return Phase(*this, std::move(name)); }

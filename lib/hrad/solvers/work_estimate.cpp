@@ -19,6 +19,15 @@ double uniform_elements(const Scene& scene, double max_area) {
   return n;
 }
 
+std::string_view smaller_work(Method method) {
+  switch (method) {
+    case Method::kFull: return "raise --max-area";
+    case Method::kSubstructure: return "raise --max-area (or --patch-area)";
+    case Method::kHierarchical: return "raise --aeps";
+  }
+  return "make the scene smaller";
+}
+
 WorkEstimate estimate_work(const Scene& scene, const SolveOptions& o) {
   WorkEstimate w;
   const double samples = static_cast<double>(o.visibility_samples);
@@ -32,7 +41,7 @@ WorkEstimate estimate_work(const Scene& scene, const SolveOptions& o) {
       w.bytes = 2.0 * n * n * sizeof(double) + n * kBytesPerElement;
       w.option = "--max-area";
       w.option_value = max_area;
-      w.remedy = "raise --max-area";
+      w.remedy = smaller_work(o.method);
       break;
     }
     case Method::kSubstructure: {
@@ -46,7 +55,7 @@ WorkEstimate estimate_work(const Scene& scene, const SolveOptions& o) {
       w.bytes = n * big_n * sizeof(double) + n * kBytesPerElement;
       w.option = "--max-area";
       w.option_value = max_area;
-      w.remedy = "raise --max-area (or --patch-area)";
+      w.remedy = smaller_work(o.method);
       break;
     }
     case Method::kHierarchical: {
@@ -59,7 +68,7 @@ WorkEstimate estimate_work(const Scene& scene, const SolveOptions& o) {
       w.bytes = 4.0 / 3.0 * leaves * kBytesPerElement + w.interactions * kBytesPerLink;
       w.option = "--aeps";
       w.option_value = aeps;
-      w.remedy = "raise --aeps";
+      w.remedy = smaller_work(o.method);
       break;
     }
   }

@@ -53,6 +53,9 @@ struct WorkEstimate {
   std::string remedy;            ///< which way to change it ("raise --aeps")
 };
 
+/// The option that makes a solve of `method` smaller: "raise --aeps", "raise --max-area".
+std::string_view smaller_work(Method method);
+
 /// Elements after uniform 1-to-4 splits of every patch until each piece is <= max_area.
 double uniform_elements(const Scene& scene, double max_area);
 
