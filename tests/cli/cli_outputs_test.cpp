@@ -12,7 +12,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <system_error>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "hrad/core/face_geometry.h"
 #include "hrad/io/solution_ply.h"
@@ -142,38 +145,83 @@ TEST(CliOutputs, FilesGetTheUmasksModeLikeAnyProgramsOutput) {
   }
 }
 
+// Starts the executable with `args` directly, its output to /dev/null: a shell without job control
+// starts background jobs with SIGINT ignored, as a terminal's Ctrl-C never would.
+pid_t start_hrad(const std::vector<std::string>& args) {
+  std::vector<char*> argv{const_cast<char*>("hrad")};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    if (std::freopen("/dev/null", "w", stderr) == nullptr || std::freopen("/dev/null", "w", stdout) == nullptr) _exit(99);
+    execv(HRAD_EXECUTABLE, argv.data());
+    _exit(98);
+  }
+  return pid;
+}
+
+// Whether `dir` holds a staging folder, and whether that holds a file (the outputs being written).
+std::pair<bool, bool> staging_in(const std::string& dir) {
+  std::pair<bool, bool> seen{false, false};
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (e.path().filename().string().rfind(".hrad-tmp-", 0) == 0) {
+      seen.first = true;
+      for (const auto& f : fs::directory_iterator(e.path(), ec)) seen.second |= f.is_regular_file(ec);
+    }
+  return seen;
+}
+
+// Sends `sig` to `pid` and expects it to die of it (as without the handler).
+void interrupt(pid_t pid, int sig) {
+  kill(pid, sig);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "exit " << (WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+  EXPECT_EQ(WTERMSIG(status), sig);
+}
+
 // A signal in the middle of a solve: the staging folder made at the start is removed and the process
-// dies of the signal, leaving only the inputs. The child is started directly (a shell without job
-// control starts background jobs with SIGINT ignored, as a terminal's Ctrl-C never would).
+// dies of the signal, leaving only the inputs.
 TEST(CliOutputs, InterruptedSolveLeavesNothing) {
   TempDir dir;
   const std::string d = dir.root().string();
   ASSERT_EQ(run_hrad("scene generate --polygons 400 --out " + d + "/g.obj", dir).exit_code, 0);
   for (const int sig : {SIGINT, SIGTERM}) {
-    const pid_t pid = fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-      std::signal(SIGINT, SIG_DFL);
-      std::signal(SIGTERM, SIG_DFL);
-      if (std::freopen("/dev/null", "w", stderr) == nullptr || std::freopen("/dev/null", "w", stdout) == nullptr) _exit(99);
-      // ~12k elements: minutes of form factors, interrupted long before the outputs are written.
-      execl(HRAD_EXECUTABLE, "hrad", "solve", (d + "/g.obj").c_str(), "--method", "full", "--max-area", "0.05",
-            "--report", (d + "/r.json").c_str(), "--out", (d + "/s.ply").c_str(), static_cast<char*>(nullptr));
-      _exit(98);
-    }
+    // ~12k elements: minutes of form factors, interrupted long before the outputs are written.
+    const pid_t pid = start_hrad({"solve", d + "/g.obj", "--method", "full", "--max-area", "0.05", "--report",
+                                  d + "/r.json", "--out", d + "/s.ply"});
+    ASSERT_GT(pid, 0);
     bool staging_seen = false;
     for (int i = 0; i < 200 && !staging_seen; ++i) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      for (const auto& e : fs::directory_iterator(d)) staging_seen |= e.path().filename().string().rfind(".hrad-tmp-", 0) == 0;
+      staging_seen = staging_in(d).first;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(300));  // into the form factors
-    kill(pid, sig);
-    int status = 0;
-    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    interrupt(pid, sig);
     EXPECT_TRUE(staging_seen) << "no staging folder while running";
-    ASSERT_TRUE(WIFSIGNALED(status)) << "exit " << (WIFEXITED(status) ? WEXITSTATUS(status) : -1);
-    EXPECT_EQ(WTERMSIG(status), sig);  // died of the signal, as without the handler
     EXPECT_EQ(dir.entries(), 2u) << "left behind after signal " << sig;
+  }
+}
+
+// A signal while the outputs are being written (files in the staging folder, growing: 300k generated
+// polygons are ~50 MB of OBJ): the half-written files go with their folder, nothing reaches --out.
+TEST(CliOutputs, InterruptedWriteLeavesNothing) {
+  TempDir dir;
+  const std::string d = dir.root().string();
+  for (const int sig : {SIGINT, SIGTERM}) {
+    const pid_t pid = start_hrad({"scene", "generate", "--polygons", "300000", "--out", d + "/g.obj"});
+    ASSERT_GT(pid, 0);
+    bool writing = false;
+    for (int i = 0; i < 4000 && !writing; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      writing = staging_in(d).second;
+    }
+    interrupt(pid, sig);
+    EXPECT_TRUE(writing) << "never caught the outputs being written";
+    EXPECT_EQ(dir.entries(), 0u) << "left behind after signal " << sig;
   }
 }
 
