@@ -35,6 +35,10 @@
 //                          pushes down (O(links) per iteration); leaf resolves element links to the
 //                          leaves on both sides with their own factors (exact per element in closed
 //                          rooms, one term per leaf and link on its path)
+//   --basis constant|linear
+//                          the radiosity over each element: constant (default), or linear (bilinear
+//                          on quads), the L2 projection of E + rho H (hierarchical with --push hsa;
+//                          lib/hrad/solvers/linear_basis.h)
 //   --threads N            worker threads (default: all cores)
 //   --report R.json        the solve report (see lib/hrad/report/report_json.h)
 // Every solve prints where the power went (reference/power_balance.h): emitted, absorbed, onto
@@ -67,7 +71,7 @@ void add_solve_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("solve", "Solve the radiosity of a scene (full, substructure or hierarchical)");
   struct Args {
     std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", kernel = "contour", clustering = "auto",
-                push = "hsa", report, out;
+                push = "hsa", basis = "constant", report, out;
     double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
     int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0;
     bool quiet = false;
@@ -89,6 +93,7 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--visibility-samples", args->visibility_samples, "Point pairs per partially visible pair (default 64)");
   cmd->add_option("--clustering", args->clustering, "Hierarchical: auto | on | off (default auto: on from 200 patches)");
   cmd->add_option("--push", args->push, "Hierarchical: hsa (default, O(links) gather) | leaf (links resolved to leaves)");
+  cmd->add_option("--basis", args->basis, "Radiosity per element: constant (default) | linear (hierarchical, --push hsa)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--report", args->report, "Write the solve report (JSON) here");
   cmd->add_option("--out", args->out, "Write the leaf mesh (PLY) here");
@@ -102,6 +107,7 @@ void add_solve_command(CLI::App& app) {
     o.kernel = parse_kernel(args->kernel);
     o.clustering = parse_clustering(args->clustering);
     o.push = parse_push(args->push);
+    o.basis = parse_basis(args->basis);
     // Given on the command line, an area or tolerance must be a positive number (0 is "automatic"
     // only when the option is left out).
     for (const auto& [name, value] : {std::pair<const char*, double>{"--max-area", args->max_area},

@@ -161,7 +161,12 @@ int SolutionSampler::leaf_at(const Vec3& x, int patch, bool* matched) const {
 Rgb SolutionSampler::value_at(const Vec3& x, int patch, bool* matched, Field field) const {
   const int f = leaf_at(x, patch, matched);
   if (f < 0) return Rgb::Zero();
-  return field == Field::constant ? solution_.face_radiosity[f] : interpolated(f, x);
+  return field == Field::constant ? element(f, x) : interpolated(f, x);
+}
+
+Rgb SolutionSampler::element(int face, const Vec3& x) const {
+  if (solution_.face_field.empty()) return solution_.face_radiosity[face];
+  return element_field_at(solution_.face_field[static_cast<std::size_t>(face)], x);
 }
 
 Rgb SolutionSampler::interpolated(int face, const Vec3& x) const {
@@ -209,7 +214,7 @@ ErrorMetrics compare_to_function(const Scene& scene, const Solution& solution,
     const int f = sampler.leaf_at(s.position, s.patch, &matched);
     if (!matched) ++m.unmatched;
     const Rgb b = f < 0                      ? Rgb::Zero()
-                  : field == Field::constant ? solution.face_radiosity[f]
+                  : field == Field::constant ? sampler.element(f, s.position)
                                              : sampler.interpolated(f, s.position);
     const Rgb r = reference(s.position, s.patch);
     const double e2 = (b - r).matrix().squaredNorm(), r2 = r.matrix().squaredNorm();

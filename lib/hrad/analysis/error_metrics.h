@@ -20,7 +20,8 @@
 // values matched an exact gather at their centroids; that made the element field's error rise
 // with refinement. Jittered samples see every leaf at a random place.
 // The value of a Solution at a sample of patch p comes from the leaf of patch p that contains the
-// point: with Field::constant it is the leaf's face_radiosity (the unknowns, piecewise constant);
+// point: with Field::constant it is the leaf's own field (the unknowns: face_radiosity, piecewise
+// constant, or with the linear basis the leaf's linear field, Solution::face_field);
 // with Field::interpolated it is the displayed field, the vertex_radiosity interpolated linearly
 // over the leaf's polygon fanned from its first vertex into triangles, as the rasterizer draws it
 // (Gouraud). The leaf is found (point in convex polygon in the patch's plane, with a relative
@@ -100,6 +101,8 @@ class SolutionSampler {
   /// The leaf of `patch` containing `x` (or the nearest, with *matched = false); -1 if the patch has no leaf.
   int leaf_at(const Vec3& x, int patch, bool* matched = nullptr) const;
   Rgb value_at(const Vec3& x, int patch, bool* matched = nullptr, Field field = Field::constant) const;
+  /// Leaf `face`'s own field at `x` (Field::constant): its constant, or its linear field.
+  Rgb element(int face, const Vec3& x) const;
   /// The vertex radiosity of leaf `face` interpolated at `x` (Field::interpolated).
   Rgb interpolated(int face, const Vec3& x) const;
 

@@ -3,6 +3,7 @@
 // analysis read it. Plain arrays: no OpenMesh or CGAL types cross this boundary.
 #pragma once
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -10,12 +11,28 @@
 
 namespace hrad {
 
+/// A leaf's radiosity under the linear basis: its values at the element's own corners (3: linear
+/// on the triangle; 4: bilinear on the quad's map x(u, v) = (1-u)(1-v) x0 + u(1-v) x1 + uv x2 +
+/// (1-u)v x3), counter-clockwise.
+struct ElementField {
+  int corners = 0;
+  std::array<Vec3, 4> x{};
+  std::array<Rgb, 4> radiosity{};
+};
+
+/// The field of `e` at a point x of its plane (on the element or near it): the triangle's linear
+/// function of x's barycentric coordinates, or the quad's bilinear function of x's (u, v) (the
+/// bilinear map inverted by Newton's method in the element's plane).
+Rgb element_field_at(const ElementField& e, const Vec3& x);
+
 struct Solution {
   std::vector<Vec3> vertices;            ///< leaf-mesh vertex positions
   std::vector<Rgb> vertex_radiosity;     ///< per vertex, for display (anchored at T-vertices, no cracks)
   std::vector<std::vector<int>> faces;   ///< leaf elements, counter-clockwise vertex ids (T-vertices included)
   std::vector<int> face_patch;           ///< the patch (index into Scene::patches) each leaf lies on
-  std::vector<Rgb> face_radiosity;       ///< constant radiosity of each leaf element (the unknowns)
+  std::vector<Rgb> face_radiosity;       ///< constant radiosity of each leaf element (the unknowns), or its mean
+  /// Per face, the linear basis's field (its mean is face_radiosity); empty with the constant basis.
+  std::vector<ElementField> face_field;
   std::vector<Rgb> patch_radiosity;      ///< area-weighted mean radiosity of each patch
   /// Optional, for figures: each link of a hierarchical solve as the segment between the centroids
   /// of its receiver and source elements (empty unless SolveOptions::record_links).

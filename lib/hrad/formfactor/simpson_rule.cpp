@@ -9,8 +9,7 @@ SimpsonPoints simpson_points(std::span<const Vec3> v) {
   auto mid = [](const Vec3& a, const Vec3& b) -> Vec3 { return (a + b) * 0.5; };  // as ElementHierarchy::split()
   if (v.size() == 4) {
     s.count = 9;
-    // (u, v) of each point on the bilinear map x = (1-u)(1-v) v0 + u(1-v) v1 + uv v2 + (1-u)v v3.
-    constexpr double uv[9][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0}, {1, 0.5}, {0.5, 1}, {0, 0.5}, {0.5, 0.5}};
+    const auto& uv = kSimpsonQuadUv;
     for (int k = 0; k < 4; ++k) s.x[k] = v[k];
     for (int k = 0; k < 4; ++k) s.x[4 + k] = mid(v[k], v[(k + 1) % 4]);
     s.x[8] = (v[0] + v[1] + v[2] + v[3]) * 0.25;

@@ -32,6 +32,7 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
                   {"visibility_samples", used.visibility_samples},
                   {"clustering", std::string(to_string(used.clustering))},
                   {"push", std::string(to_string(used.push))},
+                  {"basis", std::string(to_string(used.basis))},
                   {"threads", used.threads}};
   j["termination"] = std::string(to_string(summary.termination));
   j["status"] = std::string(to_string(summary.termination));

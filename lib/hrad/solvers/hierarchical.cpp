@@ -138,7 +138,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     ctx.progress(fmt::format("hierarchical: pass {}: {} elements, {} links", passes, h.size(), directed_link_count(links)));
     // A re-refinement that changed nothing leaves the last solution consistent with its links.
     if (passes > 1 && !changed) break;
-    const PushPull push_pull(scene, h, tree.get(), ctx.channels());
+    const PushPull push_pull(scene, h, tree.get(), ctx.channels(), options.basis);
     NodeField field = push_pull.make_field();
     const std::vector<const LinkOperator*> all = ops.all();
     bool converged = false;

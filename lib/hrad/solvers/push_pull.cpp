@@ -28,7 +28,7 @@ using Restriction = std::array<std::array<std::array<double, 9>, 9>, 4>;
 // Quads: biquadratic on the bilinear map, points in simpson_points() order at (u, v) = kQuadUv.
 // Child k of ElementHierarchy::split() has corners (parent corner k, midpoint of edge k, centre,
 // midpoint of edge k - 1); its own bilinear map is the parent's on that square of (u, v).
-constexpr double kQuadUv[9][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0}, {1, 0.5}, {0.5, 1}, {0, 0.5}, {0.5, 0.5}};
+constexpr const auto& kQuadUv = kSimpsonQuadUv;
 
 Restriction quad_restriction() {
   Restriction r{};
@@ -51,7 +51,7 @@ Restriction quad_restriction() {
 // quadratic's value. Children of split(): {v0, m01, m20}, {v1, m12, m01}, {v2, m20, m12}, {m01, m12, m20}.
 Restriction triangle_restriction() {
   using Bary = std::array<double, 3>;
-  const Bary point[7] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
+  const auto& point = kSimpsonTriangleBary;
   const int corner[4][3] = {{0, 3, 5}, {1, 4, 3}, {2, 5, 4}, {3, 4, 5}};
   auto basis = [](int i, const Bary& l) { return i < 3 ? l[i] * (2.0 * l[i] - 1.0) : 4.0 * l[i - 3] * l[(i - 2) % 3]; };
   Restriction r{};
@@ -73,9 +73,14 @@ const Restriction& restriction(int vertex_count) {
 
 }  // namespace
 
-PushPull::PushPull(const Scene& scene, const ElementHierarchy& hierarchy, const ClusterTree* tree, int channels)
-    : scene_(scene), h_(hierarchy), tree_(tree), channels_(channels), mean_weights_(hierarchy.size()),
+PushPull::PushPull(const Scene& scene, const ElementHierarchy& hierarchy, const ClusterTree* tree, int channels,
+                   Basis basis)
+    : scene_(scene), h_(hierarchy), tree_(tree), channels_(channels), basis_(basis), mean_weights_(hierarchy.size()),
       basis_integrals_(hierarchy.size()) {
+  if (basis_ == Basis::kLinear) {
+    point_weights_.resize(h_.size());
+    projections_.resize(h_.size());
+  }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, h_.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const SimpsonPoints s = simpson_points(h_.node(static_cast<NodeId>(i)).polygon());
@@ -91,6 +96,10 @@ PushPull::PushPull(const Scene& scene, const ElementHierarchy& hierarchy, const 
       } else {
         for (int k = 3; k < 6; ++k) b[k] = total / 3.0;
       }
+      if (basis_ == Basis::kLinear && h_.node(static_cast<NodeId>(i)).is_leaf()) {
+        point_weights_[i] = s.weight;
+        projections_[i] = linear_projection(s);
+      }
     }
   });
 }
@@ -98,7 +107,10 @@ PushPull::PushPull(const Scene& scene, const ElementHierarchy& hierarchy, const 
 NodeField PushPull::make_field() const {
   NodeField field;
   field.resize(h_.size(), tree_ != nullptr ? tree_->size() : 0);
-  for (std::size_t i = 0; i < h_.size(); ++i) field.radiosity[i] = h_.node(static_cast<NodeId>(i)).radiosity;
+  for (std::size_t i = 0; i < h_.size(); ++i) {
+    field.radiosity[i] = h_.node(static_cast<NodeId>(i)).radiosity;
+    if (basis_ == Basis::kLinear) field.point_radiosity[i].fill(field.radiosity[i]);
+  }
   pull(field);
   return field;
 }
@@ -108,6 +120,26 @@ Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& 
   const std::size_t i = static_cast<std::size_t>(id);
   PointValues total = field.irradiance[i];
   for (int k = 0; k < 9; ++k) total[k] += down[k];
+  if (n.is_leaf() && basis_ == Basis::kLinear) {
+    // The L2 projection of E + rho H onto the leaf's linear space (linear_basis.h).
+    PointValues b;
+    b.fill(Rgb::Zero());
+    const int points = n.vertex_count == 4 ? 9 : 7;
+    for (int k = 0; k < points; ++k) b[k] = n.emission + n.reflectance * total[k];
+    b = project_linear(projections_[i], n.vertex_count, b);
+    Rgb mean = Rgb::Zero();
+    for (int k = 0; k < points; ++k) {
+      mean += mean_weights_[i][k] * b[k];
+      for (int c = 0; c < channels_; ++c) {
+        change->change = std::max(change->change, std::abs(b[k][c] - field.point_radiosity[i][k][c]));
+        change->reflected = std::max(change->reflected, std::abs(b[k][c] - n.emission[c]));
+      }
+    }
+    field.point_radiosity[i] = b;
+    field.radiosity[i] = mean;
+    leaf_moments(field, id);
+    return mean;
+  }
   if (n.is_leaf()) {
     Rgb mean = Rgb::Zero();
     for (int k = 0; k < 9; ++k) mean += mean_weights_[i][k] * total[k];
@@ -142,6 +174,11 @@ Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& 
 
 void PushPull::leaf_moments(NodeField& field, NodeId id) const {
   const std::size_t i = static_cast<std::size_t>(id);
+  if (basis_ == Basis::kLinear) {
+    const int points = h_.node(id).vertex_count == 4 ? 9 : 7;
+    field.radiosity_moments[i] = point_field_moments(point_weights_[i], points, field.point_radiosity[i]);
+    return;
+  }
   for (int k = 0; k < 9; ++k) field.radiosity_moments[i][k] = basis_integrals_[i][k] * field.radiosity[i];
 }
 

@@ -8,13 +8,17 @@
 // evaluating the parent's polynomial at the child's points, which is exact. The radiosity's moments
 // against the same basis (link_operator.h NodeField::radiosity_moments) are pulled up by the
 // transpose of that restriction, so that what a link sends and what it delivers are adjoint
-// (Gortler, Schroeder, Cohen & Hanrahan 1993's two-scale relations, for this basis).
+// (Gortler, Schroeder, Cohen & Hanrahan 1993's two-scale relations, for this basis). With the
+// linear basis (linear_basis.h) a leaf's radiosity is the L2 projection of E + rho H onto its
+// linear space, and its moments are those of that linear field.
 #pragma once
 
 #include "hrad/core/scene.h"
 #include "hrad/mesh/element_hierarchy.h"
 #include "hrad/solvers/cluster_tree.h"
+#include "hrad/solvers/linear_basis.h"
 #include "hrad/solvers/link_operator.h"
+#include "hrad/solvers/solve.h"
 
 namespace hrad {
 
@@ -28,10 +32,12 @@ struct LeafChange {
 class PushPull {
  public:
   /// `tree` may be null (no clusters). Keeps references.
-  PushPull(const Scene& scene, const ElementHierarchy& hierarchy, const ClusterTree* tree, int channels);
+  PushPull(const Scene& scene, const ElementHierarchy& hierarchy, const ClusterTree* tree, int channels,
+           Basis basis = Basis::kConstant);
 
   /// A field sized for the hierarchy and the tree, with the leaves' radiosity from the hierarchy's
-  /// nodes (their emission before any solve) and everything above pulled from it.
+  /// nodes (their emission before any solve; with the linear basis also at the leaves' points) and
+  /// everything above pulled from it.
   NodeField make_field() const;
   /// Pushes field.irradiance and field.received down, sets every leaf's radiosity to E + rho H and
   /// pulls; returns the leaves' largest change. Parallel over patches, deterministic.
@@ -53,6 +59,10 @@ class PushPull {
   const ElementHierarchy& h_;
   const ClusterTree* tree_;
   int channels_;
+  Basis basis_;
+  /// Linear basis, per leaf: its simpson_points() weights and the projection onto its linear space.
+  std::vector<std::array<double, 9>> point_weights_;
+  std::vector<LinearProjection> projections_;
   /// Per element: its simpson_points() weights over its area (the mean of a PointValues field).
   std::vector<std::array<double, 9>> mean_weights_;
   /// Per element: the integrals of its basis functions (the Simpson weights of a quad; for a

@@ -61,6 +61,12 @@ void validate_options(const SolveOptions& o) {
     throw Error(fmt::format("--clustering: unknown mode {}", static_cast<int>(o.clustering)));
   if (o.push != Push::kHsa && o.push != Push::kLeaf)
     throw Error(fmt::format("--push: unknown operator {}", static_cast<int>(o.push)));
+  if (o.basis != Basis::kConstant && o.basis != Basis::kLinear)
+    throw Error(fmt::format("--basis: unknown basis {}", static_cast<int>(o.basis)));
+  if (o.basis == Basis::kLinear && o.method != Method::kHierarchical)
+    throw Error(fmt::format("--basis linear is offered by --method hierarchical only, not {}", to_string(o.method)));
+  if (o.basis == Basis::kLinear && o.push != Push::kHsa)
+    throw Error("--basis linear needs --push hsa (the leaf operator gathers one value per leaf)");
   if (o.threads < 0) throw Error(fmt::format("--threads must be >= 0 (0 = all cores), got {}", o.threads));
 }
 
@@ -174,6 +180,20 @@ Push parse_push(std::string_view text) {
   if (text == "hsa") return Push::kHsa;
   if (text == "leaf") return Push::kLeaf;
   throw Error(fmt::format("--push must be hsa or leaf, got '{}'", text));
+}
+
+std::string_view to_string(Basis basis) {
+  switch (basis) {
+    case Basis::kConstant: return "constant";
+    case Basis::kLinear: return "linear";
+  }
+  return "unknown";
+}
+
+Basis parse_basis(std::string_view text) {
+  if (text == "constant") return Basis::kConstant;
+  if (text == "linear") return Basis::kLinear;
+  throw Error(fmt::format("--basis must be constant or linear, got '{}'", text));
 }
 
 EffectsMode parse_effects_mode(std::string_view text) {

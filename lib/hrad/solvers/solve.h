@@ -44,6 +44,12 @@ enum class Push {
   kLeaf,  ///< each element link resolved to the leaves on both sides with their own factors
 };
 
+/// The radiosity over each leaf element (linear_basis.h).
+enum class Basis {
+  kConstant,  ///< one value per element (the classical element)
+  kLinear,    ///< linear on a triangle, bilinear on a quad's map: the L2 projection of E + rho H (hierarchical, --push hsa)
+};
+
 /// Clustering::kAuto turns clustering on from this many patches (below it the k^2 initial pairs
 /// are cheap and plain HSA is the reference).
 inline constexpr std::size_t kAutoClusteringPatches = 200;
@@ -88,6 +94,8 @@ struct SolveOptions {
   Clustering clustering = Clustering::kAuto;
   /// Hierarchical: the link operator (see Push).
   Push push = Push::kHsa;
+  /// The radiosity basis on the leaves (see Basis); kLinear needs Method::kHierarchical and Push::kHsa.
+  Basis basis = Basis::kConstant;
   /// Worker threads for the parallel phases; 0 = TBB's default (all cores).
   int threads = 0;
   /// Called with one line of progress for long phases (the CLI prints it on stderr); may be empty.
@@ -150,6 +158,9 @@ std::string_view to_string(EffectsMode mode);
 std::string_view to_string(FormFactorKernel kernel);
 std::string_view to_string(Clustering clustering);
 std::string_view to_string(Push push);
+std::string_view to_string(Basis basis);
+/// Parses "constant" | "linear"; throws hrad::Error naming --basis otherwise.
+Basis parse_basis(std::string_view text);
 /// Parses "hsa" | "leaf"; throws hrad::Error naming --push otherwise.
 Push parse_push(std::string_view text);
 /// Parses "auto" | "on" | "off"; throws hrad::Error naming --clustering otherwise.

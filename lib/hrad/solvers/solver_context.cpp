@@ -169,6 +169,20 @@ SolveSummary SolverContext::finish(const ElementHierarchy& hierarchy, std::size_
   if (out != nullptr) {
     auto p = phase("output");
     *out = hierarchy.to_solution(0.0, point_radiosity);
+    if (options_.basis == Basis::kLinear && !point_radiosity.empty()) {
+      // The leaves' linear fields by their corner values (the first points; faces are in leaf order).
+      const std::vector<NodeId> leaves = hierarchy.all_leaves();
+      out->face_field.resize(leaves.size());
+      for (std::size_t f = 0; f < leaves.size(); ++f) {
+        const ElementNode& e = hierarchy.node(leaves[f]);
+        ElementField& field = out->face_field[f];
+        field.corners = e.vertex_count;
+        for (int k = 0; k < e.vertex_count; ++k) {
+          field.x[static_cast<std::size_t>(k)] = e.polygon()[static_cast<std::size_t>(k)];
+          field.radiosity[static_cast<std::size_t>(k)] = point_radiosity[static_cast<std::size_t>(leaves[f])][static_cast<std::size_t>(k)];
+        }
+      }
+    }
   }
   summary_.peak_memory_bytes = peak_memory_bytes();
   summary_.total_seconds = total_.seconds();

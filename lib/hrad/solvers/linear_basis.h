@@ -1,0 +1,62 @@
+// Linear elements: the radiosity over each leaf is linear on a triangle and bilinear on a quad's
+// map x(u, v), discontinuous between leaves, given by its values at the element's corners
+// (Heckbert & Winget 1991, "Finite element methods for global illumination": nodal linear bases;
+// Zatz 1993, "Galerkin radiosity: a higher order solution method for global illumination": the
+// radiosity as a projection onto a polynomial basis per element; Gortler, Schroeder, Cohen & Hanrahan 1993, "Wavelet radiosity": the same
+// projection on a hierarchy, with the two-scale relations carrying it between levels).
+//
+// The design keeps one gather. Every link operator already delivers a leaf's irradiance H as a
+// field of values at its simpson_points() (biquadratic on a quad, quadratic on a triangle:
+// link_operator.h PointValues), and reads a source's radiosity through its moments against that
+// basis (NodeField::radiosity_moments), which push-pull pulls up the hierarchy exactly. A linear
+// field lies in that point basis, so the linear basis changes only what a leaf does with its
+// gathered field (push_pull.h):
+//  * B = P (E + rho H): the L2 projection onto the linear space over the element, with the element's
+//    own Simpson quadrature as the inner product (exact for the linear mass matrix on triangles and
+//    parallelograms). Projection keeps the element's mean (constants lie in the space), so power is
+//    conserved as with constant elements, and a uniform field is reproduced exactly. The error of
+//    the projection of a smooth field is O(h^2) (Schroeder & Hanrahan 1994, "Wavelet methods for
+//    radiance computations": piecewise linear is the practical sweet spot), against O(h) for the
+//    element mean.
+//  * The moments a link reads are integral phi_i B over the element, by the same quadrature: exact
+//    for a linear B on triangles and parallelograms (phi_i B is cubic there).
+//  * Jacobi iterates on the corner values; a step's change is the largest change of B at the points.
+// Links carry the factor's shape over both ends (refinement_oracle.h: the point factors at the
+// receiver's points, exact point-to-polygon factors from the same evaluator, and the source's
+// shape towards the receiver), so the hierarchical solver needs no new factors. The full matrix
+// and substructuring store one element-to-element (or element-to-patch) factor per pair and
+// deliver a constant field: they refuse the linear basis (solve.cpp validate_options()).
+#pragma once
+
+#include <array>
+
+#include "hrad/formfactor/simpson_rule.h"
+#include "hrad/solvers/link_operator.h"
+
+namespace hrad {
+
+/// Corners of an element with `vertex_count` vertices (3 or 4): the linear basis's functions.
+inline int linear_corners(int vertex_count) { return vertex_count == 4 ? 4 : 3; }
+
+/// The nodal linear function of `corner` at simpson point `point` (bilinear in (u, v) on a quad,
+/// barycentric on a triangle).
+double linear_function(int vertex_count, int corner, int point);
+
+/// The L2 projection of a PointValues field onto an element's linear space: corner value a is
+/// sum_k weight[a][k] value_k over the element's simpson_points().
+struct LinearProjection {
+  std::array<std::array<double, 9>, 4> weight{};
+};
+
+/// The projection for an element with these points (`points.count` 9: quad, 7: triangle).
+LinearProjection linear_projection(const SimpsonPoints& points);
+
+/// Projects point values (E + rho H at the points) onto the linear space and returns the linear
+/// field's values at the same points (unused points 0).
+PointValues project_linear(const LinearProjection& projection, int vertex_count, const PointValues& values);
+
+/// The moments integral phi_i B (link_operator.h NodeField::radiosity_moments) of the field given
+/// by its values at the points, by the element's Simpson quadrature (`weight`, `count`: SimpsonPoints).
+PointValues point_field_moments(const std::array<double, 9>& weight, int count, const PointValues& values);
+
+}  // namespace hrad
