@@ -4,7 +4,8 @@
 // What accuracy costs in time. Runs each method over its accuracy parameter, from coarse to fine:
 //   full          element size (max_area = total area / n, n = 64 .. 9000), Gauss-Seidel
 //   substructure  element size (the same n, input polygons shoot) and shooting-patch size
-//   hierarchical  feps (0.3 .. 0.001, aeps automatic) and aeps (1e-2 .. 1.5e-5 of the total area)
+//   hierarchical  feps (0.3 .. 0.001, aeps automatic) and aeps (1e-2 .. 1.5e-5 of the total area),
+//                 once per basis (--basis: constant, and linear as method hierarchical_linear)
 // and judges every run against one reference (a full-matrix LU solve, 4 x the finest full run and at
 // most 4096 elements unless --reference-elements, final-gathered at the error samples) on fixed
 // samples on every surface. Writes:
@@ -67,7 +68,7 @@ void add_sweep_command(CLI::App& app) {
     bool quick = false;
     double reference_elements = 0.0, target_error = 0.01, feps_aeps = 0.0;
     int samples = 256, threads = 0;
-    std::string elements, patches, feps, aeps, reference_from, push = "hsa";
+    std::string elements, patches, feps, aeps, reference_from, push = "hsa", basis = "constant,linear";
     int visibility_samples = 0;
     bool no_gather = false;
     double gather_tolerance = 1e-2;
@@ -90,6 +91,8 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--feps-aeps", args->feps_aeps,
                   "The smallest-element area of the feps runs, as a fraction of the total area (default automatic)");
   cmd->add_option("--push", args->push, "Hierarchical link operators to run, comma-separated: hsa, leaf (default hsa)");
+  cmd->add_option("--basis", args->basis,
+                  "Hierarchical (hsa) bases to run, comma-separated: constant, linear (default constant,linear)");
   cmd->add_option("--visibility-samples", args->visibility_samples,
                   "Point pairs per partly visible pair in every run (default: the solvers'); the reference uses 4x");
   cmd->add_flag("--no-gather", args->no_gather, "Do not final-gather the runs (error_l2_gathered is nan)");
@@ -161,6 +164,13 @@ void add_sweep_command(CLI::App& app) {
       std::string item;
       while (std::getline(list, item, ',')) options.pushes.push_back(parse_push(item));
       if (options.pushes.empty()) throw Error("--push: expected hsa, leaf or hsa,leaf, got ''");
+    }
+    options.bases.clear();
+    {
+      std::stringstream list(args->basis);
+      std::string item;
+      while (std::getline(list, item, ',')) options.bases.push_back(parse_basis(item));
+      if (options.bases.empty()) throw Error("--basis: expected constant, linear or constant,linear, got ''");
     }
     options.progress = show_progress;
 

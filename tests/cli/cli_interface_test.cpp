@@ -123,8 +123,9 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
     EXPECT_GT(rows.back().error_l2, 0.0) << line;
     EXPECT_LT(rows.back().error_l2, 1.0) << line;
   }
-  // --quick: 3 element counts for full and substructuring, 3 patch counts, 3 feps and 3 aeps.
-  ASSERT_EQ(rows.size(), 15u);
+  // --quick: 3 element counts for full and substructuring, 3 patch counts, 3 feps and 3 aeps once
+  // per hierarchical basis (constant, linear).
+  ASSERT_EQ(rows.size(), 21u);
   auto runs = [&](const std::string& method, const std::string& parameter) {
     std::vector<Row> v;
     for (const Row& row : rows)
@@ -137,6 +138,10 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   EXPECT_EQ(runs("substructure", "max_area").size(), 3u);
   EXPECT_EQ(runs("substructure", "patch_area").size(), 3u);
   EXPECT_EQ(runs("hierarchical", "feps").size(), 3u);
+  EXPECT_EQ(runs("hierarchical_linear", "feps").size(), 3u);
+  const auto linear_aeps = runs("hierarchical_linear", "aeps");
+  ASSERT_EQ(linear_aeps.size(), 3u);
+  EXPECT_LT(linear_aeps.back().error_l2, linear_aeps.front().error_l2);
   for (const Row& row : full) EXPECT_EQ(row.links, row.elements * row.elements);
   EXPECT_LT(full.front().elements, full.back().elements);
   EXPECT_LT(full.back().error_l2, full.front().error_l2);
@@ -150,7 +155,7 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   EXPECT_EQ(ref.at("scene"), "notebooks_data/scenes/simple_room.obj");
 
   const auto fit = nlohmann::json::parse(slurp(out + "/fit.json"));
-  for (const char* method : {"full", "substructure", "hierarchical"})
+  for (const char* method : {"full", "substructure", "hierarchical", "hierarchical_linear"})
     EXPECT_TRUE(fit.at("methods").at(method).at("time_to_target_error").contains("reached")) << method;
   // (substructuring's element counts collide here, 102 twice: fewer than 3 distinct, no fit)
   for (const char* method : {"full", "hierarchical"})
@@ -166,7 +171,7 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   // instead of solving it, and judges the same runs to the same digits.
   const std::string again = dir.path("again");
   const RunResult r2 = run_hrad("sweep notebooks_data/scenes/simple_room.obj --quick --elements 128 --patches 20 "
-                                "--feps 0.3 --aeps 0.001 --reference-from " + out + " --out " + again, dir);
+                                "--feps 0.3 --aeps 0.001 --basis constant --reference-from " + out + " --out " + again, dir);
   ASSERT_EQ(r2.exit_code, 0) << r2.err;
   EXPECT_NE(r2.err.find("reference from"), std::string::npos) << r2.err;
   EXPECT_EQ(r2.err.find("LU"), std::string::npos) << r2.err;

@@ -5,7 +5,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLORS = {"full": "#d62728", "substructure": "#1f77b4", "hierarchical": "#2ca02c"}
+COLORS = {"full": "#d62728", "substructure": "#1f77b4", "hierarchical": "#2ca02c",
+          "hierarchical_linear": "#9467bd"}
 
 
 def save(fig, path):

@@ -37,6 +37,8 @@ double reference_elements_aimed(const SweepOptions& options) {
 Solution reflected_part(const Scene& scene, Solution solution) {
   for (std::size_t f = 0; f < solution.faces.size(); ++f)
     solution.face_radiosity[f] -= scene.material_of(scene.patches[solution.face_patch[f]]).emission;
+  for (std::size_t f = 0; f < solution.face_field.size(); ++f)
+    for (Rgb& b : solution.face_field[f].radiosity) b -= scene.material_of(scene.patches[solution.face_patch[f]]).emission;
   for (std::size_t p = 0; p < solution.patch_radiosity.size(); ++p)
     solution.patch_radiosity[p] -= scene.material_of(scene.patches[p]).emission;
   // A vertex is shared only by leaves of one plane and one material (ElementHierarchy::to_solution),
@@ -77,21 +79,25 @@ std::vector<std::pair<Method, SweepSetting>> sweep_settings(const Scene& scene, 
     o.patch_area = area / p;
     add(Method::kSubstructure, "patch_area", o.patch_area, o);
   }
-  for (const Push push : options.pushes) {
-    for (double feps : options.feps_values) {
-      SolveOptions o = base_options(Method::kHierarchical, options);
-      o.feps = feps;
-      o.aeps = area * options.feps_aeps_fraction;
-      o.push = push;
-      add(Method::kHierarchical, "feps", feps, o);
+  for (const Push push : options.pushes)
+    for (const Basis basis : options.bases) {
+      if (basis == Basis::kLinear && push != Push::kHsa) continue;  // the leaf operator gathers constants
+      for (double feps : options.feps_values) {
+        SolveOptions o = base_options(Method::kHierarchical, options);
+        o.feps = feps;
+        o.aeps = area * options.feps_aeps_fraction;
+        o.push = push;
+        o.basis = basis;
+        add(Method::kHierarchical, "feps", feps, o);
+      }
+      for (double fraction : options.aeps_fractions) {
+        SolveOptions o = base_options(Method::kHierarchical, options);
+        o.aeps = area * fraction;
+        o.push = push;
+        o.basis = basis;
+        add(Method::kHierarchical, "aeps", o.aeps, o);
+      }
     }
-    for (double fraction : options.aeps_fractions) {
-      SolveOptions o = base_options(Method::kHierarchical, options);
-      o.aeps = area * fraction;
-      o.push = push;
-      add(Method::kHierarchical, "aeps", o.aeps, o);
-    }
-  }
   return settings;
 }
 
@@ -241,6 +247,7 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
     const ErrorMetrics smooth = judge(scene, reflected, reference, lookup, options.samples_per_patch, Field::interpolated);
     row.method = std::string(to_string(method));
     if (method == Method::kHierarchical && setting.options.push == Push::kLeaf) row.method += "_leaf";
+    if (setting.options.basis == Basis::kLinear) row.method += "_linear";
     row.parameter = setting.parameter;
     row.value = setting.value;
     row.elements = s.elements;
