@@ -800,7 +800,8 @@ class ShaftTest {
       bool inside = true;
       for (const Facet<Ops>& f : facets_)
         for (int k = 0; k < 3 && inside; ++k) inside = f.side(t[k]) == CGAL::POSITIVE;
-      if (!inside && exact_contacts_ && !probe_segment_hits(t) && !meets_interior_exactly(t)) return;  // touches only
+      if (!inside && exact_contacts_ && !probe_segment_hits(t) && !clipped_probe_hits(t) && !meets_interior_exactly(t))
+        return;  // touches only
     }
     hits_->push_back(patch);
   }
@@ -811,12 +812,50 @@ class ShaftTest {
   /// interior. The probes are rounded points near the shaft's vertex pairs; a probe end that is
   /// not strictly inside (the exact facet test) is not used.
   bool probe_segment_hits(const Triangle& t) const {
-    for (const auto& [u, v] : probes_) {
-      const CGAL::Orientation ou = CGAL::orientation(t[0], t[1], t[2], u);
-      const CGAL::Orientation ov = CGAL::orientation(t[0], t[1], t[2], v);
-      if (ou != CGAL::COPLANAR && ov == CGAL::opposite(ou) && crossing_inside(u, v, t)) return true;
-    }
+    for (const auto& [u, v] : probes_)
+      if (probe_hits(u, v, t)) return true;
     return false;
+  }
+  static bool probe_hits(const Point& u, const Point& v, const Triangle& t) {
+    const CGAL::Orientation ou = CGAL::orientation(t[0], t[1], t[2], u);
+    const CGAL::Orientation ov = CGAL::orientation(t[0], t[1], t[2], v);
+    return ou != CGAL::COPLANAR && ov == CGAL::opposite(ou) && crossing_inside(u, v, t);
+  }
+  /// Sufficient and exact, for a triangle that crosses the shaft's boundary (the common contact:
+  /// an occluder partly inside): t is clipped to the shaft in doubles, and a short probe segment
+  /// through the mean c of the clipped polygon's vertices, along t's normal, a quarter of c's
+  /// distance to the nearest shaft plane to either side, is tested exactly as the probes above.
+  /// Rounding can only make it fail, never pass wrongly; then the rational clip decides.
+  bool clipped_probe_hits(const Triangle& t) const {
+    thread_local std::vector<Vec3> poly, out;
+    poly.assign({to_vec(t[0]), to_vec(t[1]), to_vec(t[2])});
+    for (const Facet<Ops>& f : facets_) {
+      const Vec3 o = to_vec(f.p), n = (to_vec(f.q) - o).cross(to_vec(f.r) - o);  // orientation(p, q, r, x) > 0
+      out.clear();
+      for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Vec3& x = poly[i];
+        const Vec3& y = poly[(i + 1) % poly.size()];
+        const double sx = n.dot(x - o), sy = n.dot(y - o);
+        if (sx >= 0.0) out.push_back(x);
+        if ((sx > 0.0 && sy < 0.0) || (sx < 0.0 && sy > 0.0)) out.push_back(x + (sx / (sx - sy)) * (y - x));
+      }
+      std::swap(poly, out);
+      if (poly.size() < 3) return false;
+    }
+    Vec3 c = Vec3::Zero();
+    for (const Vec3& x : poly) c += x;
+    c /= double(poly.size());
+    double reach = std::numeric_limits<double>::infinity();
+    for (const Facet<Ops>& f : facets_) {
+      const Vec3 o = to_vec(f.p), n = (to_vec(f.q) - o).cross(to_vec(f.r) - o);
+      reach = std::min(reach, n.dot(c - o) / n.norm());
+    }
+    const Vec3 nt = (to_vec(t[1]) - to_vec(t[0])).cross(to_vec(t[2]) - to_vec(t[0])).normalized();
+    if (!(reach > 0.0) || !nt.allFinite()) return false;
+    const Point u = to_point(c + 0.25 * reach * nt), v = to_point(c - 0.25 * reach * nt);
+    for (const Facet<Ops>& f : facets_)
+      if (f.side(u) != CGAL::POSITIVE || f.side(v) != CGAL::POSITIVE) return false;
+    return probe_hits(u, v, t);
   }
   static Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
   bool meets_interior_exactly(const Triangle& t) const {
