@@ -35,6 +35,10 @@ struct PairExchangeOptions {
   int min_rays = 64;     ///< first round of point pairs (sampled)
   int max_rays = 4096;   ///< last round: the target may be missed there; the error says by how much
   int region_order = 2;  ///< Gauss order for the exact region: 3 order^2 points per triangle of p
+  /// Relative accuracy asked of the closed form (polygon_to_polygon()) for a fully visible pair,
+  /// and for a partly visible pair's unoccluded factor.
+  double closed_form_tolerance = 1e-10;
+  double partial_closed_form_tolerance = 1e-8;
 };
 
 struct PairExchange {
