@@ -28,6 +28,10 @@
 //                      reciprocity and closure errors, the work done
 //   --visibility-error E   target standard error of a partly visible pair's visible fraction
 //                      (default 0.01); rays grow fourfold from 64 up to --max-rays (default 4096)
+//   --row-error S      instead of --visibility-error: the target standard error of each row sum's
+//                      sampled part; rays are given to partly visible pairs after classification,
+//                      in proportion to their unoccluded factors and their rows' partly visible
+//                      sums (fewest rays where a pair matters least; for large models)
 //   --exact            partly visible pairs by the exact visible region (slow; no sampling error)
 //   --threshold T      skip blocks of pairs whose factor bound (cluster hierarchy) is below T in
 //                      both directions (default 0: none); each row reports the sum of its
@@ -92,7 +96,7 @@ void add_viewfactors_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("viewfactors", "Obstructed view-factor matrix between faces or groups (thermal radiation)");
   struct Args {
     std::string scene, out, format, by = "face", report, write_vs3, points, boundary, heat;
-    double visibility_error = 0.01, threshold = 0.0, sky_temperature = 0.0;
+    double visibility_error = 0.01, row_error = 0.0, threshold = 0.0, sky_temperature = 0.0;
     int max_rays = 4096, threads = 0;
     bool exact = false, enforce_closure = false, quiet = false;
   };
@@ -104,6 +108,7 @@ void add_viewfactors_command(CLI::App& app) {
   cmd->add_option("--by", args->by, "face (default) or group");
   cmd->add_option("--report", args->report, "Write the JSON report here");
   cmd->add_option("--visibility-error", args->visibility_error, "Target standard error of partly visible fractions (default 0.01)");
+  cmd->add_option("--row-error", args->row_error, "Target standard error of each row sum (allocates rays; default off)");
   cmd->add_option("--max-rays", args->max_rays, "Most point pairs per partly visible pair (default 4096)");
   cmd->add_flag("--exact", args->exact, "Partly visible pairs by the exact visible region");
   cmd->add_option("--threshold", args->threshold, "Skip pair blocks whose factor bound is below this (default 0)");
@@ -118,6 +123,8 @@ void add_viewfactors_command(CLI::App& app) {
     if (args->by != "face" && args->by != "group") throw Error(fmt::format("--by: '{}' is not face or group", args->by));
     if (!(args->visibility_error > 0.0 && args->visibility_error < 1.0))
       throw Error(fmt::format("--visibility-error: {} is not in (0, 1)", args->visibility_error));
+    if (!(args->row_error >= 0.0 && args->row_error < 1.0)) throw Error(fmt::format("--row-error: {} is not in [0, 1)", args->row_error));
+    if (args->row_error > 0.0 && args->exact) throw Error("--row-error and --exact exclude each other (the exact region has no sampling error)");
     if (args->max_rays < 64 || args->max_rays > 1 << 24) throw Error(fmt::format("--max-rays: {} is not in [64, 16777216]", args->max_rays));
     if (!(args->threshold >= 0.0 && args->threshold < 1.0)) throw Error(fmt::format("--threshold: {} is not in [0, 1)", args->threshold));
     if (args->threads < 0) throw Error(fmt::format("--threads: {} is negative", args->threads));
@@ -148,6 +155,7 @@ void add_viewfactors_command(CLI::App& app) {
     options.pair.fraction_error = args->visibility_error;
     options.pair.max_rays = args->max_rays;
     options.threshold = args->threshold;
+    options.row_error = args->row_error;
     options.threads = args->threads;
     if (!args->quiet) options.progress = [](std::string_view line) { std::cerr << "hrad viewfactors: " << line << "\n"; };
 

@@ -110,6 +110,25 @@ TEST(ViewFactorGuarantees, SameBitsAtAnyThreadCount) {
   EXPECT_EQ(a.exchange, b.exchange);
 }
 
+// The row budget (--row-error): in a closed room with an obstacle every row must sum to 1 (the
+// enclosure's closure, independent of the code), and the sampled rows do within 4 of the larger of
+// the target and their reported error, with the same bits at any thread count.
+TEST(ViewFactorGuarantees, RowErrorBudgetClosesRows) {
+  Scene s = make_box(4, 3, 5, {material(Rgb::Constant(0.5), Rgb::Zero())}, {0, 0, 0, 0, 0, 0}, true);
+  add_block(s, 1.0, 2.5, 0.8, 1.7, 1.5, 3.0, 0);
+  ViewFactorOptions options = plain_options();
+  options.row_error = 0.004;
+  options.threads = 1;
+  const ViewFactorMatrix m = compute_view_factors(s, face_units(s), options);
+  ASSERT_GT(m.counters.partial, 0u);
+  expect_reciprocal_nonnegative(m);
+  for (int u = 0; u < m.n; ++u) EXPECT_NEAR(m.row_sum(u), 1.0, 4 * std::max(options.row_error, m.sampling_error[u])) << u;
+  options.threads = 2;
+  const ViewFactorMatrix b = compute_view_factors(s, face_units(s), options);
+  EXPECT_EQ(m.column, b.column);
+  EXPECT_EQ(m.exchange, b.exchange);
+}
+
 // Groups: A_I F_IJ is the sum of A_i F_ij over the faces of I and J (area-weighted), and a group
 // of several walls sees itself.
 TEST(ViewFactorGuarantees, GroupsAreAreaWeightedSums) {

@@ -73,17 +73,17 @@ Fraction region_fraction(const FormFactorEvaluator& ev, const Patch& a, int p, c
   return f;
 }
 
-}  // namespace
-
-PairExchange pair_exchange(const FormFactorEvaluator& ev, int p, int q, const PairExchangeOptions& options) {
+// Classifies the pair (collecting the occluders a partly visible pair's rays must test) and
+// evaluates its closed form.
+PairExchange classify(const FormFactorEvaluator& ev, int p, int q, const PairExchangeOptions& options,
+                      std::vector<int>* occluders) {
   PairExchange r;
   const Scene& scene = ev.scene();
   const Patch& a = scene.patches[static_cast<std::size_t>(p)];
   const Patch& b = scene.patches[static_cast<std::size_t>(q)];
+  occluders->clear();
   if (ev.faces_away(a.vertices, b.vertices)) return r;
-  thread_local std::vector<int> occluders;
-  occluders.clear();
-  r.pair_class = ev.classify(a.vertices, p, b.vertices, q, nullptr, &occluders);
+  r.pair_class = ev.classify(a.vertices, p, b.vertices, q, nullptr, occluders);
   if (r.pair_class == PairClass::kFacingAway || r.pair_class == PairClass::kFullyHidden) return r;
   // The closed form to what each class needs (polygon_to_polygon.h: a looser tolerance keeps more
   // contour sums and takes lower Gauss orders for far pairs): a fully visible pair's factor is the
@@ -95,11 +95,46 @@ PairExchange pair_exchange(const FormFactorEvaluator& ev, int p, int q, const Pa
   r.evaluated = true;
   // Both directions come from one evaluation; their mean is symmetric in p and q.
   r.unoccluded = 0.5 * (a.area * f.from_to + b.area * f.to_from);
-  if (r.pair_class == PairClass::kFullyVisible) {
-    r.exchange = r.unoccluded;
-    return r;
-  }
-  if (!(r.unoccluded > 0.0)) return r;
+  if (r.pair_class == PairClass::kFullyVisible) r.exchange = r.unoccluded;
+  return r;
+}
+
+void apply(const Fraction& fraction, PairExchange* r) {
+  r->regions = fraction.regions;
+  r->exchange = r->unoccluded * fraction.value;
+  r->error = r->unoccluded * fraction.error;
+}
+
+}  // namespace
+
+PairExchange classify_pair(const FormFactorEvaluator& ev, int p, int q, const PairExchangeOptions& options) {
+  thread_local std::vector<int> occluders;
+  return classify(ev, p, q, options, &occluders);
+}
+
+void sample_partial(const FormFactorEvaluator& ev, int p, int q, int rays, PairExchange* r) {
+  if (r->pair_class != PairClass::kPartial || !(r->unoccluded > 0.0)) return;
+  const Scene& scene = ev.scene();
+  const Patch& a = scene.patches[static_cast<std::size_t>(p)];
+  const Patch& b = scene.patches[static_cast<std::size_t>(q)];
+  thread_local std::vector<int> occluders;
+  occluders.clear();
+  ev.classify(a.vertices, p, b.vertices, q, nullptr, &occluders);
+  const std::uint64_t seed = ev.pair_seed(a.vertices, p, b.vertices, q);
+  rays = std::max(4, rays);
+  const Fraction fraction =
+      sampled_fraction(ev, a, p, b, q, occluders, rays, detail::mix_seed(seed, static_cast<std::uint64_t>(rays)));
+  r->rays += fraction.rays;
+  apply(fraction, r);
+}
+
+PairExchange pair_exchange(const FormFactorEvaluator& ev, int p, int q, const PairExchangeOptions& options) {
+  thread_local std::vector<int> occluders;
+  PairExchange r = classify(ev, p, q, options, &occluders);
+  if (r.pair_class != PairClass::kPartial || !(r.unoccluded > 0.0)) return r;
+  const Scene& scene = ev.scene();
+  const Patch& a = scene.patches[static_cast<std::size_t>(p)];
+  const Patch& b = scene.patches[static_cast<std::size_t>(q)];
   Fraction fraction;
   if (options.partial == PartialVisibility::kExactRegion) {
     fraction = region_fraction(ev, a, p, b, q, options.region_order);
@@ -112,9 +147,7 @@ PairExchange pair_exchange(const FormFactorEvaluator& ev, int p, int q, const Pa
       if (fraction.error <= options.fraction_error || rays >= options.max_rays) break;
     }
   }
-  r.regions = fraction.regions;
-  r.exchange = r.unoccluded * fraction.value;
-  r.error = r.unoccluded * fraction.error;
+  apply(fraction, &r);
   return r;
 }
 

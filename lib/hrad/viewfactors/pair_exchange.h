@@ -55,4 +55,12 @@ struct PairExchange {
 /// visibility oracle (effects.visibility off when the scene has no occlusion). Thread-safe.
 PairExchange pair_exchange(const FormFactorEvaluator& evaluator, int p, int q, const PairExchangeOptions& options);
 
+/// pair_exchange() without sampling: a partly visible pair comes back with its class, its
+/// unoccluded exchange and exchange 0, for sample_partial() once its ray budget is known.
+PairExchange classify_pair(const FormFactorEvaluator& evaluator, int p, int q, const PairExchangeOptions& options);
+
+/// The sampled visible fraction of a partly visible pair from classify_pair() with `rays` point
+/// pairs (at least 4): sets its exchange, error and rays. Thread-safe.
+void sample_partial(const FormFactorEvaluator& evaluator, int p, int q, int rays, PairExchange* pair);
+
 }  // namespace hrad

@@ -1,6 +1,7 @@
 #include "hrad/viewfactors/view_factor_matrix.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <utility>
@@ -99,8 +100,45 @@ class BoundedPairs {
 
 struct RowResult {
   std::vector<std::pair<int, PairExchange>> pairs;  // nonzero exchanges with q > p
+  std::vector<std::pair<int, double>> deferred;     // partly visible pairs (q > p) and their unoccluded exchange
   ViewFactorCounters counters;
 };
+
+// A partly visible pair whose fraction is sampled once every row's budget is known.
+struct DeferredPair {
+  int p, q;
+  double unoccluded;
+};
+
+// Rays for each deferred pair so that each row's sampled part has a standard error of at most
+// `sigma` (the binomial bound: a fraction's variance is at most 1/(4 n)). Pair k adds c_kw =
+// m U_k / A_w to row w (m = 2 when both patches are in w) with standard error c_kw / (2 sqrt(n_k));
+// n_k >= c_kw S_w / (4 sigma^2), S_w = sum_k c_kw, gives row w a variance of at most sigma^2.
+// (Neyman allocation for the bound; clamped to [4, max_rays], where the target may be missed: the
+// reported row errors say by how much.)
+std::vector<int> row_error_rays(const std::vector<DeferredPair>& deferred, const std::vector<int>& unit,
+                                const std::vector<double>& area, double sigma, int max_rays) {
+  std::vector<double> sum(area.size(), 0.0);
+  auto shares = [&](const DeferredPair& d) {
+    const int u = unit[static_cast<std::size_t>(d.p)], v = unit[static_cast<std::size_t>(d.q)];
+    const double m = u == v ? 2.0 : 1.0;
+    return std::array<std::pair<int, double>, 2>{{{u, m * d.unoccluded / area[static_cast<std::size_t>(u)]},
+                                                   {v, m * d.unoccluded / area[static_cast<std::size_t>(v)]}}};
+  };
+  for (const DeferredPair& d : deferred) {
+    const auto s = shares(d);
+    sum[static_cast<std::size_t>(s[0].first)] += s[0].second;
+    if (s[1].first != s[0].first) sum[static_cast<std::size_t>(s[1].first)] += s[1].second;
+  }
+  std::vector<int> rays(deferred.size());
+  for (std::size_t k = 0; k < deferred.size(); ++k) {
+    double need = 0.0;
+    for (const auto& [w, c] : shares(deferred[k])) need = std::max(need, c * sum[static_cast<std::size_t>(w)]);
+    need = std::ceil(need / (4.0 * sigma * sigma));
+    rays[k] = static_cast<int>(std::clamp(need, 4.0, static_cast<double>(max_rays)));
+  }
+  return rays;
+}
 
 }  // namespace
 
@@ -188,6 +226,20 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
   // the same bits at any thread count.
   std::vector<std::vector<std::pair<int, double>>> upper(static_cast<std::size_t>(n));
   std::vector<double> variance(static_cast<std::size_t>(n), 0.0);
+  auto add = [&](std::size_t p, int q, const PairExchange& e) {
+    const int u = unit[p], v = unit[static_cast<std::size_t>(q)];
+    if (u == v) {
+      // Both orders of the pair lie in one unit: A_u F_uu counts p -> q and q -> p.
+      upper[static_cast<std::size_t>(u)].emplace_back(u, 2.0 * e.exchange);
+      variance[static_cast<std::size_t>(u)] += 4.0 * e.error * e.error;
+    } else {
+      upper[static_cast<std::size_t>(std::min(u, v))].emplace_back(std::max(u, v), e.exchange);
+      variance[static_cast<std::size_t>(u)] += e.error * e.error;
+      variance[static_cast<std::size_t>(v)] += e.error * e.error;
+    }
+  };
+  const bool defer = options.row_error > 0.0 && options.pair.partial == PartialVisibility::kSampled;
+  std::vector<DeferredPair> deferred;
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   constexpr std::size_t kChunk = 128;
   std::vector<RowResult> rows;
@@ -200,7 +252,8 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
           if (!eligible[p]) continue;
           RowResult& row = rows[p - begin];
           auto one = [&](int q) {
-            const PairExchange e = pair_exchange(evaluator, static_cast<int>(p), q, options.pair);
+            const PairExchange e = defer ? classify_pair(evaluator, static_cast<int>(p), q, options.pair)
+                                         : pair_exchange(evaluator, static_cast<int>(p), q, options.pair);
             ViewFactorCounters& k = row.counters;
             switch (e.pair_class) {
               case PairClass::kFacingAway: ++k.facing_away; break;
@@ -211,7 +264,8 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
             k.closed_forms += e.evaluated ? 1 : 0;
             k.rays += static_cast<std::uint64_t>(e.rays);
             k.regions += static_cast<std::uint64_t>(e.regions);
-            if (e.exchange > 0.0 || e.error > 0.0) row.pairs.emplace_back(q, e);
+            if (defer && e.pair_class == PairClass::kPartial && e.unoccluded > 0.0) row.deferred.emplace_back(q, e.unoccluded);
+            else if (e.exchange > 0.0 || e.error > 0.0) row.pairs.emplace_back(q, e);
           };
           if (pruned) {
             for (int q : candidates.of_patch[p]) one(q);
@@ -225,19 +279,8 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
     });
     for (std::size_t p = begin; p < end; ++p) {
       RowResult& row = rows[p - begin];
-      const int u = unit[p];
-      for (const auto& [q, e] : row.pairs) {
-        const int v = unit[static_cast<std::size_t>(q)];
-        if (u == v) {
-          // Both orders of the pair lie in one unit: A_u F_uu counts p -> q and q -> p.
-          upper[static_cast<std::size_t>(u)].emplace_back(u, 2.0 * e.exchange);
-          variance[static_cast<std::size_t>(u)] += 4.0 * e.error * e.error;
-        } else {
-          upper[static_cast<std::size_t>(std::min(u, v))].emplace_back(std::max(u, v), e.exchange);
-          variance[static_cast<std::size_t>(u)] += e.error * e.error;
-          variance[static_cast<std::size_t>(v)] += e.error * e.error;
-        }
-      }
+      for (const auto& [q, e] : row.pairs) add(p, q, e);
+      for (const auto& [q, unoccluded] : row.deferred) deferred.push_back({static_cast<int>(p), q, unoccluded});
       c.facing_away += row.counters.facing_away;
       c.fully_visible += row.counters.fully_visible;
       c.fully_hidden += row.counters.fully_hidden;
@@ -250,6 +293,59 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
   progress.finish();
   rows.clear();
   rows.shrink_to_fit();
+  c.classify_seconds = clock.seconds();
+
+  if (!deferred.empty()) {
+    // The first budget comes from the binomial bound; the kernel-weighted estimator can exceed it
+    // (uneven weights), so rows whose estimated error is still above the target get their pairs'
+    // rays raised by the ratio of variances and sampled afresh, for up to three more rounds.
+    std::vector<int> rays = row_error_rays(deferred, unit, m.area, options.row_error, options.pair.max_rays);
+    std::vector<PairExchange> sampled(deferred.size());
+    std::vector<char> redo(deferred.size(), 1);
+    const double target = options.row_error * options.row_error;
+    for (int round = 0; round < 4; ++round) {
+      std::uint64_t round_rays = 0;
+      for (std::size_t k = 0; k < deferred.size(); ++k)
+        if (redo[k]) round_rays += static_cast<std::uint64_t>(rays[k]);
+      if (round_rays == 0) break;
+      ProgressReporter sampling(round == 0 ? "visible fractions" : "visible fractions, rows above the target", round_rays,
+                                "rays", options.progress);
+      arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, deferred.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t k = r.begin(); k < r.end(); ++k) {
+            if (!redo[k]) continue;
+            PairExchange e;
+            e.pair_class = PairClass::kPartial;
+            e.unoccluded = deferred[k].unoccluded;
+            e.rays = sampled[k].rays;
+            sample_partial(evaluator, deferred[k].p, deferred[k].q, rays[k], &e);
+            sampled[k] = e;
+            sampling.advance(static_cast<std::uint64_t>(rays[k]));
+          }
+        });
+      });
+      sampling.finish();
+      // Each row's estimated variance from its sampled pairs (the pairs' own error estimates).
+      std::vector<double> row_variance(static_cast<std::size_t>(n), 0.0);
+      for (std::size_t k = 0; k < deferred.size(); ++k) {
+        const int u = unit[static_cast<std::size_t>(deferred[k].p)], v = unit[static_cast<std::size_t>(deferred[k].q)];
+        const double e = sampled[k].error * (u == v ? 2.0 : 1.0);
+        row_variance[static_cast<std::size_t>(u)] += e * e / (m.area[static_cast<std::size_t>(u)] * m.area[static_cast<std::size_t>(u)]);
+        if (v != u) row_variance[static_cast<std::size_t>(v)] += e * e / (m.area[static_cast<std::size_t>(v)] * m.area[static_cast<std::size_t>(v)]);
+      }
+      for (std::size_t k = 0; k < deferred.size(); ++k) {
+        const int u = unit[static_cast<std::size_t>(deferred[k].p)], v = unit[static_cast<std::size_t>(deferred[k].q)];
+        const double ratio = std::max(row_variance[static_cast<std::size_t>(u)], row_variance[static_cast<std::size_t>(v)]) / target;
+        redo[k] = ratio > 1.0 && rays[k] < options.pair.max_rays;
+        if (redo[k]) rays[k] = static_cast<int>(std::min(std::ceil(ratio * rays[k]), double(options.pair.max_rays)));
+      }
+    }
+    for (std::size_t k = 0; k < deferred.size(); ++k) {
+      c.rays += static_cast<std::uint64_t>(sampled[k].rays);
+      if (sampled[k].exchange > 0.0 || sampled[k].error > 0.0) add(static_cast<std::size_t>(deferred[k].p), deferred[k].q, sampled[k]);
+    }
+    std::vector<DeferredPair>().swap(deferred);
+  }
 
   // Sum duplicates (units of several patches) in append order, then lay out both triangles.
   std::vector<std::int64_t> count(static_cast<std::size_t>(n) + 1, 0);

@@ -27,6 +27,11 @@ struct ViewFactorOptions {
   PairExchangeOptions pair;
   /// Skip blocks of patch pairs whose factor bound is below this in both directions (0: none).
   double threshold = 0.0;
+  /// When > 0 (sampled partial visibility): the target standard error of each row sum's sampled
+  /// part, in factor units, instead of pair.fraction_error per pair. Partly visible pairs are
+  /// sampled after all pairs are classified, each with rays in proportion to its unoccluded
+  /// factor and to its rows' unoccluded partly visible sums (at most pair.max_rays).
+  double row_error = 0.0;
   /// Decide occluders that touch a pair's shaft exactly (VisibilityOptions::exact_shaft_contacts):
   /// more pairs classified exactly, at a higher classification cost.
   bool exact_shaft_contacts = true;
@@ -41,6 +46,7 @@ struct ViewFactorCounters {
   std::uint64_t fully_visible = 0, fully_hidden = 0, partial = 0;
   std::uint64_t closed_forms = 0;      ///< polygon_to_polygon() calls
   std::uint64_t rays = 0;              ///< segments cast for partly visible pairs
+  double classify_seconds = 0.0;       ///< classification and closed forms (with row_error: before sampling)
   std::uint64_t regions = 0;           ///< exact visible regions computed
   std::uint64_t cluster_pairs = 0;     ///< node pairs the bounded traversal visited
   double seconds = 0.0;

@@ -39,6 +39,7 @@ nlohmann::json view_factor_report(const ViewFactorMatrix& m, const SurfaceUnits&
       {"max_skipped_bound", max_skipped},
       {"partial_visibility", options.pair.partial == PartialVisibility::kExactRegion ? "exact_region" : "sampled"},
       {"fraction_error_target", options.pair.fraction_error},
+      {"row_error_target", options.row_error},
       {"work",
        {{"patch_pairs", c.patch_pairs},
         {"skipped_pairs", c.skipped_pairs},
@@ -51,6 +52,7 @@ nlohmann::json view_factor_report(const ViewFactorMatrix& m, const SurfaceUnits&
         {"rays", c.rays},
         {"visible_regions", c.regions},
         {"matrix_bytes", m.bytes()},
+        {"classify_seconds", c.classify_seconds},
         {"seconds", c.seconds}}},
       {"per_surface", surfaces}};
   if (closure != nullptr)
