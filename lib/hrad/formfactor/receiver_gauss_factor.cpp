@@ -15,17 +15,29 @@ void receiver_gauss_points(std::span<const Vec3> p, const Vec3& n, std::vector<d
     detail::polygon_quadrature(p, n, 2, out);
     return;
   }
+  // An elongated quad takes the rule on each of a row of near-square cells of its parameter square:
+  // one 3 x 3 rule spread over a long element puts its points far from where the light of a polygon
+  // near one end arrives (the elements along a corridor from its end wall). The points still do not
+  // depend on the source, so closure holds as before.
+  const double lu = 0.5 * ((p[1] - p[0]).norm() + (p[2] - p[3]).norm());
+  const double lv = 0.5 * ((p[3] - p[0]).norm() + (p[2] - p[1]).norm());
+  const auto cells = [](double along, double across) {
+    return across > 0.0 ? static_cast<int>(std::clamp(std::lround(along / across), 1L, kMaxReceiverCells)) : 1;
+  };
+  const int mu = cells(lu, lv), mv = cells(lv, lu);
   const detail::GaussRule g = detail::gauss_legendre(3);
-  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
-    const double u = 0.5 * (g.nodes[i] + 1.0);
-    for (std::size_t j = 0; j < g.nodes.size(); ++j) {
-      const double v = 0.5 * (g.nodes[j] + 1.0);
-      const Vec3 x = (1 - u) * (1 - v) * p[0] + u * (1 - v) * p[1] + u * v * p[2] + (1 - u) * v * p[3];
-      const Vec3 du = (1 - v) * (p[1] - p[0]) + v * (p[2] - p[3]);
-      const Vec3 dv = (1 - u) * (p[3] - p[0]) + u * (p[2] - p[1]);
-      out.push_back({x, 0.25 * g.weights[i] * g.weights[j] * du.cross(dv).norm()});
+  for (int a = 0; a < mu; ++a)
+    for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+      const double u = (a + 0.5 * (g.nodes[i] + 1.0)) / mu;
+      for (int b = 0; b < mv; ++b)
+        for (std::size_t j = 0; j < g.nodes.size(); ++j) {
+          const double v = (b + 0.5 * (g.nodes[j] + 1.0)) / mv;
+          const Vec3 x = (1 - u) * (1 - v) * p[0] + u * (1 - v) * p[1] + u * v * p[2] + (1 - u) * v * p[3];
+          const Vec3 du = (1 - v) * (p[1] - p[0]) + v * (p[2] - p[3]);
+          const Vec3 dv = (1 - u) * (p[3] - p[0]) + u * (p[2] - p[1]);
+          out.push_back({x, 0.25 * g.weights[i] * g.weights[j] * du.cross(dv).norm() / (mu * mv)});
+        }
     }
-  }
 }
 
 double receiver_gauss_factor(std::span<const Vec3> receiver, std::span<const Vec3> source, double rel_tol,
