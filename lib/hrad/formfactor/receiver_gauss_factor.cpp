@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include "hrad/formfactor/gauss_legendre.h"
@@ -21,8 +22,13 @@ void receiver_gauss_points(std::span<const Vec3> p, const Vec3& n, std::vector<d
   // depend on the source, so closure holds as before.
   const double lu = 0.5 * ((p[1] - p[0]).norm() + (p[2] - p[3]).norm());
   const double lv = 0.5 * ((p[3] - p[0]).norm() + (p[2] - p[1]).norm());
+  // k cells where the sides' ratio is between sqrt(2) (k - 1/2) and sqrt(2) (k + 1/2): cells of aspect
+  // below ~2, and thresholds irrational, so that no ratio of short decimal or binary lengths sits on
+  // one (a scaled scene rounds its lengths and must keep its rules).
   const auto cells = [](double along, double across) {
-    return across > 0.0 ? static_cast<int>(std::clamp(std::lround(along / across), 1L, kMaxReceiverCells)) : 1;
+    if (!(across > 0.0)) return 1;
+    const auto k = static_cast<long>(std::floor(along / across / std::numbers::sqrt2 + 0.5));
+    return static_cast<int>(std::clamp(k, 1L, kMaxReceiverCells));
   };
   const int mu = cells(lu, lv), mv = cells(lv, lu);
   const detail::GaussRule g = detail::gauss_legendre(3);

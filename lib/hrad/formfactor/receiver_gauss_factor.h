@@ -15,8 +15,8 @@ namespace hrad {
 inline constexpr long kMaxReceiverCells = 8;
 
 /// The receiver's points: the 3 x 3 product Gauss-Legendre rule on a quad's bilinear map (degree 5
-/// in (u, v)), on each of k near-square cells along an elongated quad (k its sides' length ratio
-/// rounded, at most kMaxReceiverCells); the order-2 rule of polygon_quadrature() (12 points) on any
+/// in (u, v)), on each of k cells of aspect below ~2 along an elongated quad (k its sides' length
+/// ratio over sqrt(2), rounded, at most kMaxReceiverCells); the order-2 rule of polygon_quadrature() (12 points) on any
 /// other polygon. The
 /// weights sum to the area to rounding. They do not depend on the source, so each point's factors
 /// to the polygons of a closed surface sum to 1 and so do the element's (closure, to rounding).
