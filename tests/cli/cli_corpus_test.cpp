@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "run_hrad.h"
@@ -54,6 +55,44 @@ TEST(CliCorpus, BlenderObjAndGltfSolveToTheSameAnswer) {
   }
   EXPECT_NEAR(b.at("SphereLight").power[0], a.at("SphereLight").power[0], 1e-5 * a.at("SphereLight").power[0]);
   EXPECT_NEAR(a.at("SphereLight").power[0] / a.at("SphereLight").area, 5.0, 1e-12);  // B = E: black light
+}
+
+// Closed unit cubes written by hand in 3ds Max's and SketchUp's habits (tests/io/corpus/hand,
+// make_furnaces.py: byte order marks, CRLF, tab-indented MTL statements, "mtllib ./NAME", names with
+// '#' and spaces; inches and triangles). Walls Kd 0.5 Ke 2, floor Kd 0.75 Ke 1: E / (1 - rho) = 4 for
+// both, so B = 4 on every face is the exact answer of B = E + rho F B whenever every row of F sums to 1.
+// The full matrix's contour kernel makes each row of a closed room sum to 1 (README, "Kernels"; the
+// hard cases hold such boxes to 1e-8 with LU), so 1e-9 relative here, where the geometry is exact.
+// Each face keeps the material its usemtl names: 3ds Max's "Material #25" and "Material #26" are two
+// materials, not one "Material" with the last definition's values.
+TEST(CliCorpus, HandWrittenExporterFurnacesKeepTheirMaterialsAndSolveToTheClosedForm) {
+  struct Case {
+    std::string file, floor, walls;
+    std::size_t floor_patches, patches;
+  };
+  const Case cases[] = {{"tests/io/corpus/hand/3dsmax/furnace box.obj", "Material #26", "Material #25", 1, 6},
+                        {"tests/io/corpus/hand/sketchup/furnace.obj", "Light Wood Floor", "Beige Wall", 2, 12}};
+  for (const Case& c : cases) {
+    TempDir dir;
+    const RunResult r = run_hrad("solve '" + c.file + "' --method full --quiet --report " + dir.path("r.json"), dir);
+    ASSERT_EQ(r.exit_code, 0) << c.file << "\n" << r.err;
+    EXPECT_TRUE(r.err.empty()) << c.file << "\n" << r.err;
+    const nlohmann::json report = nlohmann::json::parse(slurp(dir.path("r.json")));
+    ASSERT_EQ(report["patches"].size(), c.patches) << c.file;
+    std::size_t floor_patches = 0;
+    for (const auto& p : report["patches"]) {
+      const std::string material = p["material"].get<std::string>();
+      ASSERT_TRUE(material == c.floor || material == c.walls) << c.file << ": " << material;
+      const bool floor = material == c.floor;
+      floor_patches += floor ? 1 : 0;
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(p["reflectance"][k].get<double>(), floor ? 0.75 : 0.5) << c.file << " " << material;
+        EXPECT_EQ(p["emission"][k].get<double>(), floor ? 1.0 : 2.0) << c.file << " " << material;
+        EXPECT_NEAR(p["radiosity"][k].get<double>(), 4.0, 4e-9) << c.file << " patch " << p["face"];
+      }
+    }
+    EXPECT_EQ(floor_patches, c.floor_patches) << c.file;
+  }
 }
 
 }  // namespace

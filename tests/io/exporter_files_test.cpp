@@ -86,6 +86,21 @@ TEST(ExporterFiles, CommentsAfterStatementsAndPrincipledBsdfExtras) {
   EXPECT_EQ(m.emission[2], 8.0);
 }
 
+TEST(ExporterFiles, HashInsideMaterialNamesIsPartOfTheName) {
+  // 3ds Max's default material names: "Material #25", "Material #26". Cut at '#' as a trailing comment,
+  // both were one "Material" holding the last definition's values.
+  test::TempDir dir;
+  dir.write("m.mtl", "newmtl Material #25\n\tKd 0.2500 0.2500 0.2500\nnewmtl Material #26\n\tKd 0.7500 0.7500 0.7500\n");
+  const Scene s = read_obj_scene(dir.write(
+      "s.obj", "mtllib m.mtl\n" + kTwoQuads + "usemtl Material #25\nf 1 2 3 4\nusemtl Material #26\nf 5 6 7 8 # top\n"));
+  ASSERT_EQ(s.patches.size(), 2u);
+  EXPECT_EQ(s.materials[s.patches[0].material].name, "Material #25");
+  EXPECT_EQ(s.materials[s.patches[0].material].reflectance[0], 0.25);
+  EXPECT_EQ(s.materials[s.patches[1].material].name, "Material #26");
+  EXPECT_EQ(s.materials[s.patches[1].material].reflectance[0], 0.75);
+  EXPECT_DOUBLE_EQ(s.patches[1].area, 2.0);  // the face's trailing comment is still a comment
+}
+
 TEST(ExporterFiles, HexFloatIsAnErrorNotADifferentNumber) {
   // strtod reads 0x1p2 as 4, tinyobjloader as 0: one number syntax for both passes.
   test::TempDir dir;

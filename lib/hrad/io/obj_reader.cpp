@@ -67,9 +67,13 @@ std::vector<std::string> split_lines(const std::string& path, const std::string&
     // read differently (a fuzzer found "v\r 5 0 0" counted as a vertex here and not there).
     if (line.find('\r') != std::string::npos) throw_at(path, lines.size() + 1, "carriage return inside a line");
     // A comment after a statement ("f 1 2 3 # back wall"): tinyobjloader would read '#' as an index.
+    // Not after a material, object or group name: 3ds Max names materials "Material #25", "Material
+    // #26", which would all become one "Material". (File names after mtllib lose a trailing comment.)
     if (const std::size_t hash = line.find('#'); hash != std::string::npos && hash > 0) {
       const std::size_t first = line.find_first_not_of(" \t");
-      if (first < hash && (line[hash - 1] == ' ' || line[hash - 1] == '\t')) line.erase(hash);
+      const std::vector<std::string> t = first < hash ? tokens_of(line) : std::vector<std::string>{};
+      const bool names = !t.empty() && (t[0] == "newmtl" || t[0] == "usemtl" || t[0] == "o" || t[0] == "g");
+      if (first < hash && !names && (line[hash - 1] == ' ' || line[hash - 1] == '\t')) line.erase(hash);
     }
     lines.push_back(std::move(line));
   }
