@@ -24,15 +24,17 @@
 namespace hrad {
 
 /// Hierarchical: links per element, an average over measured solves (the Cornell box at the
-/// defaults: 518 elements, 35.9 k links, 69 per element; the clustered 16k-polygon office: 2.85 M
-/// links), rounded up.
-inline constexpr double kLinksPerElement = 100.0;
+/// defaults: 518 elements, 26.5 k links, 51 per element; generated offices at the defaults: 186 per
+/// element at 32 k polygons, 190 at 63 k), rounded up.
+inline constexpr double kLinksPerElement = 200.0;
 /// Hierarchical: kernel calls per link (refinement tries candidates it splits, then the leaf factors).
 inline constexpr double kEvaluationsPerLink = 4.0;
-/// Bytes per element (quadtree node, leaf mesh, radiosity arrays) and per hierarchical link
-/// (24 on average measured on the 16k office, plus leaf-factor entries).
+/// Bytes per element (quadtree node, leaf mesh, radiosity arrays) and per hierarchical link: the
+/// peak of the whole solve (the refinement's working set, links, gather operators) over its links,
+/// measured on generated offices at the defaults (1.6 GB for 5.96 M links at 32 k polygons, 3.1 GB
+/// for 12.0 M at 63 k: ~260 bytes a link).
 inline constexpr double kBytesPerElement = 512.0;
-inline constexpr double kBytesPerLink = 48.0;
+inline constexpr double kBytesPerLink = 256.0;
 /// Share of kernel calls that are partly visible and cost visibility_samples segment queries.
 inline constexpr double kPartlyVisibleShare = 0.25;
 /// More kernel calls than this, or more segment queries than kMaxSegmentQueries, is refused as
