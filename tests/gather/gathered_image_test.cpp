@@ -1,9 +1,11 @@
 // Images by final gather (gather/gathered_image.h): a furnace (a closed room of uniform emission
 // and reflectance looks the same, B = E / (1 - rho), from anywhere; pbrt-v4's integrator tests,
 // src/pbrt/cpu/integrators_test.cpp, check the image mean of such scenes against the closed form),
-// antialiased edges with the exact coverage the stratified samples give, and the same bits at any
-// thread count.
+// antialiased edges with the exact coverage the stratified samples give, the same bits at any
+// thread count, and probes at the points the pixels see that get the pixels' values.
 #include "hrad/gather/gathered_image.h"
+
+#include <optional>
 
 #include <tbb/global_control.h>
 
@@ -11,6 +13,8 @@
 
 #include "gather_test_scenes.h"
 #include "hrad/gather/leaf_gather.h"
+#include "hrad/gather/probes.h"
+#include "hrad/render/camera.h"
 
 namespace hrad {
 namespace {
@@ -122,6 +126,77 @@ TEST(GatheredImage, SameBitsAtOneAndTwoThreads) {
     EXPECT_TRUE((one.radiosity.pixels[i] == two.radiosity.pixels[i]).all()) << i;
   EXPECT_EQ(one.display.pixels, two.display.pixels);
   EXPECT_GT(one.work.rays, 0u);  // the block casts shadows: rays were cast and had to agree
+}
+
+
+// A probe (gather/probes.h) at the point a pixel sees gets the value the image gathered there: with
+// one sample per pixel each pixel's ray passes through its centre, so the floor point it meets
+// is found here by the ray's own intersection with the floor (y = 0), independently of the
+// rasterizer, and `gather_probes` at that point facing up must give the pixel's radiosity, in
+// light, in the block's shadow and in its penumbra. Exact visible regions make both values
+// deterministic functions of the point (sampled rays are seeded by the point's bits, which the
+// two paths round differently), so they agree to 1e-9.
+TEST(GatheredImage, ProbesAtThePixelsPointsGetThePixelsValues) {
+  Scene box = make_box(3, 2.5, 4, {material(Rgb::Constant(0.5), Rgb::Zero()), material(Rgb::Zero(), Rgb::Constant(5))},
+                       {0, 1, 0, 0, 0, 0});
+  const double bx0 = 1.0, bx1 = 2.0, by1 = 1.2, bz0 = 1.5, bz1 = 2.5;
+  test::add_block(box, bx0, bx1, 0.0, by1, bz0, bz1, 0);
+  const Solution leaves = test::leaves_with(box, 0.25, [&](const Vec3& y, int p) {
+    return box.material_of(box.patches[static_cast<std::size_t>(p)]).emission + Rgb(0.2 + 0.1 * y.x(), 0.3, 0.1 * y.z());
+  });
+  LeafGatherOptions go;
+  go.visibility = VisibilityMode::exact;
+  const LeafGather gather(box, leaves, go);
+  RenderOptions o;
+  o.camera.position = Vec3(1.5, 2.3, 0.2);
+  o.camera.target = Vec3(1.5, 0.0, 2.6);
+  o.camera.up = Vec3::UnitY();
+  o.camera.vfov_deg = 70.0;
+  o.camera.width = 14;
+  o.camera.height = 12;
+  o.samples_per_pixel = 1;
+  const GatheredImage image = render_gathered(leaves, gather, o);
+  // Where the ray from the camera through (px, py) meets the floor first (not the block), or nothing.
+  auto floor_point = [&](double px, double py) -> std::optional<Vec3> {
+    const Vec3 d = pixel_direction(o.camera, px, py), c = o.camera.position;
+    if (d.y() >= 0) return std::nullopt;
+    const double t = -c.y() / d.y();
+    const Vec3 x = c + t * d;
+    if (x.x() <= 0 || x.x() >= 3 || x.z() <= 0 || x.z() >= 4) return std::nullopt;
+    // Slab test against the block [bx0, bx1] x [0, by1] x [bz0, bz1].
+    double t0 = 0.0, t1 = t;
+    const double lo[3] = {bx0, 0.0, bz0}, hi[3] = {bx1, by1, bz1};
+    for (int k = 0; k < 3; ++k) {
+      const double a = (lo[k] - c[k]) / d[k], b = (hi[k] - c[k]) / d[k];
+      t0 = std::max(t0, std::min(a, b));
+      t1 = std::min(t1, std::max(a, b));
+    }
+    if (t0 < t1 * (1 - 1e-9)) return std::nullopt;
+    return x;
+  };
+  std::vector<ProbePoint> probes;
+  std::vector<std::pair<int, int>> pixel;
+  for (int y = 0; y < o.camera.height; ++y)
+    for (int x = 0; x < o.camera.width; ++x)
+      if (const std::optional<Vec3> at = floor_point(x + 0.5, y + 0.5)) {
+        probes.push_back({*at, Vec3::UnitY(), 0});
+        pixel.emplace_back(x, y);
+      }
+  ASSERT_GT(probes.size(), 40u);
+  const std::vector<ProbeValue> values = gather_probes(gather, probes);
+  double darkest = 1e300, brightest = 0.0;
+  for (std::size_t i = 0; i < probes.size(); ++i) {
+    const auto [x, y] = pixel[i];
+    const Rgb& seen = image.radiosity.pixels[static_cast<std::size_t>(y) * o.camera.width + x];
+    ASSERT_EQ(values[i].patch, 0) << "pixel " << x << "," << y;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LT(std::abs(values[i].radiosity[c] - seen[c]), 1e-9 * std::abs(seen[c]) + 1e-15)
+          << "pixel " << x << "," << y << " channel " << c << ": " << values[i].radiosity[c] << " vs " << seen[c];
+    darkest = std::min(darkest, seen[1]);
+    brightest = std::max(brightest, seen[1]);
+  }
+  EXPECT_LT(darkest, 0.8 * brightest);  // the block's shadow is among the pixels compared
+  EXPECT_GT(gather.work().exact_regions, 0u);  // and so is its penumbra
 }
 
 }  // namespace
