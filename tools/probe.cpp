@@ -30,9 +30,19 @@
 //                          (CGAL; milliseconds a leaf: the reference for the sampled estimate)
 //   --threads N            worker threads (default: all cores); the values do not depend on it
 //   --seed S               seed of the visibility samples (default 1)
+//   --emission-units U     declare the unit of the scene's emission (MTL Ke): lm/m2 (luminous
+//                          exitance) or W/m2 (radiant exitance of white light); the results then
+//                          gain a column illuminance_lux (lib/hrad/gather/photometry.h: Radiance's
+//                          luminance weights, and 179 lm/W for W/m2)
+//   --isolux IMAGE.png     with --grid: a false-colour isolux plot of the grid (u to the right, v up;
+//                          lib/hrad/render/isolux_image.h), bands between round levels, isolines and
+//                          a labelled colour bar; in lux with --emission-units, otherwise the
+//                          luminance-weighted irradiance in the scene's units
 //   --quiet                no progress on stderr
-// A summary (points, seconds, work per point) goes to stdout. Bad options and files are a one-line
+// A summary (points, seconds, work per point; with --grid the least, mean and greatest value and
+// the uniformity least / mean) goes to stdout. Bad options and files are a one-line
 // error naming the option or file:line, before any work; nothing is written then.
+#include <algorithm>
 #include <cctype>
 #include <iostream>
 #include <memory>
@@ -47,11 +57,14 @@
 #include "hrad/core/error.h"
 #include "hrad/core/stopwatch.h"
 #include "hrad/gather/leaf_gather.h"
+#include "hrad/gather/photometry.h"
 #include "hrad/gather/probes.h"
 #include "hrad/io/atomic_file.h"
+#include "hrad/io/png_writer.h"
 #include "hrad/io/points_csv.h"
 #include "hrad/io/scene_reader.h"
 #include "hrad/io/solution_ply.h"
+#include "hrad/render/isolux_image.h"
 
 namespace hrad::cli {
 namespace {
@@ -98,7 +111,7 @@ std::string rgb_cells(const Rgb& c) { return fmt::format("{},{},{}", c[0], c[1],
 void add_probe_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("probe", "Irradiance (and radiosity on surfaces) at points by final gather");
   struct Args {
-    std::string solution, scene, points, grid, out;
+    std::string solution, scene, points, grid, out, emission_units, isolux;
     double gather_tolerance = 1e-3;
     int visibility_samples = 64, threads = 0;
     bool exact_visibility = false, quiet = false;
@@ -117,6 +130,9 @@ void add_probe_command(CLI::App& app) {
   cmd->add_flag("--exact-visibility", args->exact_visibility, "Exact visible regions instead of samples");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--seed", args->seed, "Seed of the visibility samples (default 1)");
+  cmd->add_option("--emission-units", args->emission_units,
+                  "Unit of the scene's emission: lm/m2 or W/m2 (adds illuminance_lux)");
+  cmd->add_option("--isolux", args->isolux, "With --grid: write a false-colour isolux plot (PNG) of the grid");
   cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
   cmd->callback([args, cmd] {
     if (args->points.empty() == args->grid.empty())
@@ -132,9 +148,16 @@ void add_probe_command(CLI::App& app) {
     validate_leaf_gather_options(options);
     std::optional<ProbeGrid> grid;
     if (!args->grid.empty()) grid = parse_grid(args->grid);
+    std::optional<EmissionUnits> units;
+    if (cmd->count("--emission-units")) {
+      units = parse_emission_units(args->emission_units);
+      if (!units) throw Error(fmt::format("--emission-units: '{}' is not lm/m2 or W/m2", args->emission_units));
+    }
+    if (!args->isolux.empty() && !grid) throw Error("--isolux: needs --grid (a plot of a work plane)");
 
     OutputFiles outputs;
     outputs.declare("--out", args->out);
+    if (!args->isolux.empty()) outputs.declare("--isolux", args->isolux);
     outputs.check_inputs({{"the solution", args->solution}, {"--scene", args->scene}});
     if (!args->points.empty()) outputs.check_inputs({{"--points", args->points}});
     // The probe file first: its defects are the user's most likely ones, and it is cheap to read.
@@ -162,8 +185,13 @@ void add_probe_command(CLI::App& app) {
     progress.finish();
     const double seconds = clock.seconds();
 
+    // Illuminance in lux when the units are declared, else the luminance-weighted irradiance.
+    std::vector<double> lux(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+      lux[i] = units ? illuminance_lux(values[i].irradiance, *units) : luminance_weighted(values[i].irradiance);
     write_file_atomically(args->out, [&](std::ostream& o) {
-      o << "x,y,z,nx,ny,nz,face,irradiance_r,irradiance_g,irradiance_b,radiosity_r,radiosity_g,radiosity_b\n";
+      o << "x,y,z,nx,ny,nz,face,irradiance_r,irradiance_g,irradiance_b,radiosity_r,radiosity_g,radiosity_b"
+        << (units ? ",illuminance_lux\n" : "\n");
       for (std::size_t i = 0; i < points.size(); ++i) {
         const ProbePoint& p = points[i];
         const ProbeValue& v = values[i];
@@ -171,9 +199,18 @@ void add_probe_command(CLI::App& app) {
         o << fmt::format("{},{},{},{},{},{},", p.position.x(), p.position.y(), p.position.z(), n.x(), n.y(), n.z());
         o << (v.patch >= 0 ? std::to_string(scene.patches[static_cast<std::size_t>(v.patch)].face) : std::string());
         o << "," << rgb_cells(v.irradiance) << ",";
-        o << (v.patch >= 0 ? rgb_cells(v.radiosity) : std::string(",,")) << "\n";
+        o << (v.patch >= 0 ? rgb_cells(v.radiosity) : std::string(",,"));
+        if (units) o << fmt::format(",{}", lux[i]);
+        o << "\n";
       }
     });
+    if (!args->isolux.empty()) {
+      IsoluxOptions io;
+      io.aspect = (grid->u1 - grid->u0) / (grid->v1 - grid->v0);
+      io.unit = units ? "lx" : "";
+      const IsoluxImage plot = render_isolux(lux, grid->nu, grid->nv, io);
+      write_png(args->isolux, plot.image);
+    }
     outputs.commit();
     const GatherWork w = gather.work();
     const double per_point = w.points ? 1.0 / static_cast<double>(w.points) : 0.0;
@@ -182,6 +219,14 @@ void add_probe_command(CLI::App& app) {
         "classifications, {:.1f} rays, {:.2f} exact regions\n",
         args->out, points.size(), seconds, per_point * w.node_visits, per_point * w.leaves_covered,
         per_point * w.classifications, per_point * w.rays, per_point * w.exact_regions);
+    if (grid && !lux.empty()) {
+      double lo = lux[0], hi = lux[0], sum = 0.0;
+      for (double v : lux) lo = std::min(lo, v), hi = std::max(hi, v), sum += v;
+      const double mean = sum / static_cast<double>(lux.size());
+      std::cout << fmt::format("{}: least {:.6g}, mean {:.6g}, greatest {:.6g}, uniformity least/mean {:.3f}\n",
+                               units ? "illuminance (lux)" : "luminance-weighted irradiance", lo, mean, hi,
+                               mean > 0 ? lo / mean : 0.0);
+    }
   });
 }
 

@@ -115,6 +115,10 @@ const BadInput kCases[] = {
      " --grid y,0,0,0,1,1,2,2 --gather-tolerance -0.1 --out {d}/r.csv", "--gather-tolerance"},
     {"probe_samples_with_exact_visibility", {}, "probe {d}/s.ply --scene " + kScene +
      " --grid y,0,0,0,1,1,2,2 --exact-visibility --visibility-samples 8 --out {d}/r.csv", "--visibility-samples"},
+    {"probe_unknown_emission_units", {}, "probe {d}/s.ply --scene " + kScene +
+     " --grid y,0,0,0,1,1,2,2 --emission-units cd/m2 --out {d}/r.csv", "--emission-units"},
+    {"probe_isolux_without_grid", {{"p.csv", "x,y,z,nx,ny,nz\n0,1,0,0,1,0\n"}},
+     "probe {d}/s.ply --scene " + kScene + " --points {d}/p.csv --isolux {d}/i.png --out {d}/r.csv", "--isolux"},
     {"probe_bad_points_cell", {{"p.csv", "x,y,z,nx,ny,nz\n0,1,0,0,1,0\n0,1,abc,0,1,0\n"}},
      "probe {d}/s.ply --scene " + kScene + " --points {d}/p.csv --out {d}/r.csv", "p.csv:3"},
     {"probe_zero_normal", {{"p.csv", "x,y,z,nx,ny,nz\n\n0,1,0,0,0,0\n"}},

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "../formfactor/howell.h"
+#include "hrad/io/png_writer.h"
 #include "run_hrad.h"
 
 namespace hrad::test {
@@ -113,6 +114,52 @@ TEST(CliProbe, PointsUnderASquareLightGetHowellsFactor) {
       EXPECT_EQ(row.at("face"), "0");
       EXPECT_LT(relative_error(num(row, "irradiance_b"), kE[2] * under_light(x, z, kC)), 1e-9) << i << "," << j;
     }
+}
+
+// Lux (gather/photometry.h): the same grid with the emission declared in lm/m2 and in W/m2 gains
+// illuminance_lux = efficacy * (0.265074126 R + 0.670114631 G + 0.064811243 B) of Howell's
+// irradiance, to 1e-9 (efficacy 1 and 179 lm/W); stdout gives the grid's least, mean and greatest
+// lux and the uniformity; --isolux writes the plot, 512 pixels along the grid's longer side (u, 2 m)
+// and 256 along v (1 m), plus its colour bar.
+TEST(CliProbe, DeclaredUnitsGiveLuxAndAnIsoluxPlot) {
+  TempDir dir;
+  write_light_over_floor(dir);
+  ASSERT_EQ(run_hrad("solve " + dir.path("lit.obj") + " --method full --quiet --out " + dir.path("s.ply"), dir).exit_code,
+            0);
+  const double weighted = 0.265074126 * kE[0] + 0.670114631 * kE[1] + 0.064811243 * kE[2];
+  for (const auto& [units, efficacy] : {std::pair<std::string, double>{"lm/m2", 1.0}, {"W/m2", 179.0}}) {
+    const RunResult g = run_hrad("probe " + dir.path("s.ply") + " --scene " + dir.path("lit.obj") +
+                                     " --grid y,0,0,0,2,1,4,2 --emission-units " + units + " --isolux " +
+                                     dir.path("plan.png") + " --quiet --out " + dir.path("g.csv"),
+                                 dir);
+    ASSERT_EQ(g.exit_code, 0) << g.err;
+    const std::vector<Row> grid = read_rows(dir.path("g.csv"));
+    ASSERT_EQ(grid.size(), 8u);
+    double least = 1e300, greatest = 0.0;
+    for (const Row& row : grid) {
+      const double exact = efficacy * weighted * under_light(num(row, "x"), num(row, "z"), kC);
+      EXPECT_LT(relative_error(num(row, "illuminance_lux"), exact), 1e-9) << units;
+      least = std::min(least, exact);
+      greatest = std::max(greatest, exact);
+    }
+    // The summary's least and greatest, printed to 6 digits.
+    const std::size_t at = g.out.find("illuminance (lux): least ");
+    ASSERT_NE(at, std::string::npos) << g.out;
+    EXPECT_LT(relative_error(std::stod(g.out.substr(at + 25)), least), 1e-5) << g.out;
+    const std::size_t top = g.out.find("greatest ", at);
+    ASSERT_NE(top, std::string::npos) << g.out;
+    EXPECT_LT(relative_error(std::stod(g.out.substr(top + 9)), greatest), 1e-5) << g.out;
+    const Image plan = read_png(dir.path("plan.png"));
+    EXPECT_EQ(plan.height, 256) << units;
+    EXPECT_GT(plan.width, 512) << units;
+  }
+  // Without declared units there is no lux column.
+  ASSERT_EQ(run_hrad("probe " + dir.path("s.ply") + " --scene " + dir.path("lit.obj") +
+                         " --grid y,0,0,0,2,1,4,2 --quiet --out " + dir.path("g.csv"),
+                     dir)
+                .exit_code,
+            0);
+  EXPECT_EQ(read_rows(dir.path("g.csv"))[0].count("illuminance_lux"), 0u);
 }
 
 // The cube [0, 2]^3 facing inwards, every face emitting 2 with reflectance 0.6; the floor cut in

@@ -96,7 +96,7 @@ struct FalseColourOptions {
 Image render_false_colour(const Solution& solution, const std::vector<double>& face_value,
                           const RenderOptions& options, const FalseColourOptions& colours);
 
-/// Draws `text` (digits, '.', '-', '+', 'e', 'E', '%', ' ') with a 3x5 pixel font scaled by
+/// Draws `text` (digits, '.', '-', '+', 'e', 'E', '%', 'l', 'x', ' ') with a 3x5 pixel font scaled by
 /// `scale`, top-left at (x, y), clipped to the image.
 void draw_text(Image& image, int x, int y, const std::string& text, Rgb8 colour, int scale = 2);
 
