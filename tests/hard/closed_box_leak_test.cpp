@@ -25,7 +25,7 @@ SolveOptions method(Method m, double max_area) {
   o.max_area = max_area;
   o.patch_area = 4 * max_area;  // substructuring: shooting patches are elements' parents, also rounded
   o.aeps = max_area / 4;
-  o.clustering = Clustering::kOff;  // element links only: clustered transfers are tested below
+  o.clustering = Clustering::kOff;  // element links only: cluster links are tested below
   o.visibility_samples = 16;        // exactness does not depend on how many pairs are sampled
   return o;
 }
@@ -104,6 +104,56 @@ TEST(ClosedBoxes, ABoxWithAnOpeningLetsLightIn) {
     solve(s.scene, method(Method::kFull, s.scene.total_area() / 100), &sol);
     EXPECT_GT(largest(sol, s.inside), 1e-3) << "seed " << c.seed;
   }
+}
+
+// Clustered hierarchical radiosity at its defaults: links with a cluster end share what they carry
+// among the patches of each end facing the other (hsa_links.h). The boxes' inside faces face
+// outside clusters too; they must get nothing. Sizes, tessellations and frames of their own.
+const Case kClusteredCases[] = {{{1.5, 0.75, 1.125}, 3, 2, {1.0, -0.5, 0.25}, 11},
+                                {{0.5, 2.5, 0.625}, 3, 1, {0.25, 0.75, -1.5}, 12}};
+
+SolveOptions clustered() {
+  SolveOptions o;
+  o.method = Method::kHierarchical;
+  o.clustering = Clustering::kOn;
+  return o;
+}
+
+// Guarantee: with clustering, the inside of a closed box lit from outside stays exactly dark (and
+// its outside is lit); cluster links are made (not vacuous).
+TEST(ClosedBoxes, ClusterLinksLetNoLightIntoABoxLitFromOutside) {
+  for (const Case& c : kClusteredCases) {
+    const LeakScene s =
+        test::box_above_ground(c.size, 0.25 * c.size.z(), 1.75, c.cells, test::leak_frame(c.frame, c.shift), c.seed);
+    Solution sol;
+    const SolveSummary sum = solve(s.scene, clustered(), &sol);
+    EXPECT_GT(sum.figures.at("cluster_link_pairs"), 0.0) << "seed " << c.seed;
+    EXPECT_EQ(largest(sol, s.inside), 0.0) << "seed " << c.seed;
+    EXPECT_GT(mean(sol, s.scene, s.outside), 1e-3) << "seed " << c.seed;
+  }
+}
+
+// Guarantee: with clustering, a lamp inside a closed crate lights nothing outside it, exactly.
+TEST(ClosedBoxes, ClusterLinksLetNoLightOutOfACrateLitFromInside) {
+  for (const Case& c : kClusteredCases) {
+    const LeakScene s = test::crate_in_room(c.size, 1.75, c.cells, test::leak_frame(c.frame, c.shift), c.seed);
+    Solution sol;
+    const SolveSummary sum = solve(s.scene, clustered(), &sol);
+    EXPECT_GT(sum.figures.at("cluster_link_pairs"), 0.0) << "seed " << c.seed;
+    EXPECT_EQ(largest(sol, s.around), 0.0) << "seed " << c.seed;
+    EXPECT_EQ(largest(sol, s.outside), 0.0) << "seed " << c.seed;
+    EXPECT_GT(mean(sol, s.scene, s.inside), 1e-3) << "seed " << c.seed;
+  }
+}
+
+// Control: with clustering, a box with an opening in its lid lets light in.
+TEST(ClosedBoxes, ClusterLinksLetLightThroughAnOpening) {
+  const Case& c = kClusteredCases[0];
+  LeakScene s = test::box_above_ground(c.size, 0.25 * c.size.z(), 1.75, c.cells, test::leak_frame(c.frame, c.shift), c.seed);
+  test::open_box(s, s.inside.size() - 3);
+  Solution sol;
+  solve(s.scene, clustered(), &sol);
+  EXPECT_GT(largest(sol, s.inside), 1e-3);
 }
 
 // Guarantee (the oracle itself): on a box turned by arbitrary angles, points sampled on the inside

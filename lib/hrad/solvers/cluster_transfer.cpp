@@ -61,10 +61,34 @@ bool ClusterTransfer::facing_away(NodeRef p, NodeRef q) const {
   return false;
 }
 
-double ClusterTransfer::projected_area(NodeRef r, const Vec3& d) const {
-  if (is_cluster(r)) return tree_->projected_area(cluster_index(r), d);
-  const ElementNode& e = h_.node(r);
-  return e.area * std::max(0.0, scene_.patches[static_cast<std::size_t>(e.patch)].normal.dot(d));
+namespace {
+
+bool listed(const std::vector<int>* patches, int patch) {
+  return patches != nullptr && std::binary_search(patches->begin(), patches->end(), patch);
+}
+
+}  // namespace
+
+double ClusterTransfer::projected_area(NodeRef r, const Vec3& d, const std::vector<int>* hidden) const {
+  if (is_cluster(r) && hidden == nullptr) return tree_->projected_area(cluster_index(r), d);
+  double sum = 0.0;
+  for (int k = 0, n = patch_count(r); k < n; ++k) {
+    const int patch = is_cluster(r) ? tree_->patches(cluster_index(r))[static_cast<std::size_t>(k)] : h_.node(r).patch;
+    if (listed(hidden, patch)) continue;
+    const double area = is_cluster(r) ? scene_.patches[static_cast<std::size_t>(patch)].area : h_.node(r).area;
+    sum += area * facing_cosine(scene_.patches[static_cast<std::size_t>(patch)].normal, d);
+  }
+  return sum;
+}
+
+double ClusterTransfer::largest_share(NodeRef r, const Vec3& d, const std::vector<int>* hidden) const {
+  double cosine = 0.0;
+  for (int k = 0, n = patch_count(r); k < n; ++k) {
+    const int patch = is_cluster(r) ? tree_->patches(cluster_index(r))[static_cast<std::size_t>(k)] : h_.node(r).patch;
+    if (!listed(hidden, patch)) cosine = std::max(cosine, facing_cosine(scene_.patches[static_cast<std::size_t>(patch)].normal, d));
+  }
+  const double facing = projected_area(r, d, hidden);
+  return facing > 0.0 ? cosine / facing : INFINITY;
 }
 
 int ClusterTransfer::sample(NodeRef r, double w, double u, double v, Vec3* point) const {
@@ -72,6 +96,15 @@ int ClusterTransfer::sample(NodeRef r, double w, double u, double v, Vec3* point
   const ElementNode& e = h_.node(r);
   *point = detail::polygon_point(e.polygon(), u, v);
   return e.patch;
+}
+
+int ClusterTransfer::patch_count(NodeRef r) const {
+  return is_cluster(r) ? static_cast<int>(tree_->patches(cluster_index(r)).size()) : 1;
+}
+
+int ClusterTransfer::sample_patch(NodeRef r, int k, double u, double v, Vec3* point) const {
+  if (is_cluster(r)) return tree_->sample_patch(tree_->patches(cluster_index(r))[static_cast<std::size_t>(k)], u, v, point);
+  return sample(r, 0.0, u, v, point);
 }
 
 FormFactorEstimate ClusterTransfer::far_field(NodeRef p, const NodeShape& sp, NodeRef q, const NodeShape& sq) const {

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "hrad/core/scene.h"
 #include "hrad/mesh/element_hierarchy.h"
@@ -39,6 +40,7 @@ class ClusterTransfer {
   /// `tree` may be null (no clusters). Keeps references.
   ClusterTransfer(const Scene& scene, const ElementHierarchy& hierarchy, const ClusterTree* tree);
 
+  const Scene& scene() const { return scene_; }
   NodeShape shape(NodeRef r) const;
   TransferBound bound(const NodeShape& p, const NodeShape& q) const;
   /// True when nothing of q lies strictly in front of element p's plane or the other way round
@@ -47,10 +49,20 @@ class ClusterTransfer {
   /// The far-field factors without visibility (value F(p -> q), reverse F(q -> p); facing_away
   /// when either side shows no surface to the other).
   FormFactorEstimate far_field(NodeRef p, const NodeShape& sp, NodeRef q, const NodeShape& sq) const;
-  /// Exact projected area of r's surfaces towards the unit direction d.
-  double projected_area(NodeRef r, const Vec3& d) const;
+  /// Exact projected area of r's surfaces towards the unit direction d (facing_cosine()), without
+  /// the patches in `hidden` (sorted patch indices; null: none).
+  double projected_area(NodeRef r, const Vec3& d, const std::vector<int>* hidden = nullptr) const;
+  /// The largest share per unit area that a link towards d gives a patch of r (hsa_links.h): the
+  /// largest facing_cosine() over r's patches not in `hidden` over their projected area towards d
+  /// (+infinity when none faces d). Times the link's exchange A_r F, the largest factor a patch of
+  /// r receives through it.
+  double largest_share(NodeRef r, const Vec3& d, const std::vector<int>* hidden = nullptr) const;
   /// A point uniform by area on r's surfaces; returns its patch.
   int sample(NodeRef r, double w, double u, double v, Vec3* point) const;
+  /// The number of patches below r (1 for an element).
+  int patch_count(NodeRef r) const;
+  /// A point uniform on r's k-th patch (on the element itself for an element); returns the patch.
+  int sample_patch(NodeRef r, int k, double u, double v, Vec3* point) const;
 
  private:
   const Scene& scene_;
@@ -64,6 +76,10 @@ class NodeSurfaces final : public SurfaceSampler {
   NodeSurfaces(const ClusterTransfer& geometry, NodeRef node, double area) : geometry_(geometry), node_(node), area_(area) {}
   double area() const override { return area_; }
   int sample(double w, double u, double v, Vec3* point) const override { return geometry_.sample(node_, w, u, v, point); }
+  int patch_count() const override { return geometry_.patch_count(node_); }
+  int sample_patch(int k, double u, double v, Vec3* point) const override {
+    return geometry_.sample_patch(node_, k, u, v, point);
+  }
 
  private:
   const ClusterTransfer& geometry_;

@@ -90,7 +90,7 @@ double ClusterTree::projected_area(int index, const Vec3& d) const {
   double sum = 0.0;
   for (const int patch : patches(index)) {
     const Patch& p = scene_.patches[static_cast<std::size_t>(patch)];
-    sum += p.area * std::max(0.0, p.normal.dot(d));
+    sum += p.area * facing_cosine(p.normal, d);
   }
   return sum;
 }

@@ -24,6 +24,16 @@ inline constexpr bool is_cluster(NodeRef r) { return r <= -2; }
 inline constexpr int cluster_index(NodeRef r) { return -2 - r; }
 inline constexpr NodeRef cluster_ref(int index) { return -2 - index; }
 
+/// The cosine by which a patch of unit normal n faces the unit direction d in a cluster link's
+/// shares (hsa_links.h): 0 when it faces away or grazes d within rounding, where the sign of n.d is
+/// noise and a share divided by a projected area of that size would be too. Written out so that
+/// every sum of shares adds the same bits.
+inline constexpr double kGrazingCosine = 1e-12;
+inline double facing_cosine(const Vec3& n, const Vec3& d) {
+  const double c = n.x() * d.x() + n.y() * d.y() + n.z() * d.z();
+  return c > kGrazingCosine ? c : 0.0;
+}
+
 struct Cluster {
   Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  ///< bounding box of the contents
   Vec3 centre = Vec3::Zero();                 ///< of the bounding box
@@ -61,6 +71,11 @@ class ClusterTree {
   /// A point uniform by area on the patches of cluster `index` from three numbers in [0, 1);
   /// returns the patch it lies on.
   int sample(int index, double w, double u, double v, Vec3* point) const;
+  /// A point uniform by area on patch `patch` from two numbers in [0, 1); returns `patch`.
+  int sample_patch(int patch, double u, double v, Vec3* point) const {
+    *point = samplers_[static_cast<std::size_t>(patch)].point(u, v);
+    return patch;
+  }
 
  private:
   NodeRef build(int begin, int end, int parent, const std::vector<Vec3>& centroids);

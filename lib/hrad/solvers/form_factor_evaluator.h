@@ -60,6 +60,11 @@ class SurfaceSampler {
   virtual double area() const = 0;
   /// A point uniform by area on the surfaces from three numbers in [0, 1); returns its patch.
   virtual int sample(double w, double u, double v, Vec3* point) const = 0;
+  /// The number of patches below the node (1 for an element).
+  virtual int patch_count() const = 0;
+  /// A point uniform by area on the node's k-th patch (on the element itself for an element) from
+  /// two numbers in [0, 1); returns that patch.
+  virtual int sample_patch(int k, double u, double v, Vec3* point) const = 0;
 };
 
 /// Kernel-weighted visibility of a polygon from a point (Wallace, Elmquist & Haines 1989): sums over
@@ -137,6 +142,14 @@ class FormFactorEvaluator {
   /// whole scene. Unbiased, reciprocal by construction; `error` is its standard error. value
   /// F(p -> q), reverse F(q -> p), visibility the kernel-weighted visible fraction.
   FormFactorEstimate sampled(const SurfaceSampler& p, const SurfaceSampler& q, int samples, std::uint64_t seed) const;
+
+  /// The patches of `from` that face the direction `d` (facing_cosine() > 0: those a cluster link
+  /// gives a share of what it carries, hsa_links.h) but see no point of `to` along `rays` rays to
+  /// points uniform by area on `to`, visibility decided exactly (Visibility::sight()), sorted. A
+  /// patch behind a closed surface never sees through it, whatever the rays: the link must give
+  /// it nothing.
+  std::vector<int> hidden_surfaces(const SurfaceSampler& from, const Vec3& d, const SurfaceSampler& to, int rays,
+                                   std::uint64_t seed) const;
 
   /// Deterministic seed for sampling a pair of polygons on patches pa and pb (from their geometry,
   /// relative to their patches: a scaled scene draws the same samples).

@@ -1,5 +1,7 @@
 #include "hrad/solvers/hsa_links.h"
 
+#include <algorithm>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -8,7 +10,7 @@ namespace hrad {
 
 HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, const ClusterTree* tree,
                    const ClusterTransfer& geometry)
-    : elements_(h.size()), tree_(tree), h_(h) {
+    : elements_(h.size()), scene_(geometry.scene()), tree_(tree), h_(h) {
   const std::size_t elements = h.size();
   const std::size_t n = elements + (tree != nullptr ? tree->size() : 0);
   auto dense = [&](NodeRef r) { return is_cluster(r) ? elements + static_cast<std::size_t>(cluster_index(r)) : static_cast<std::size_t>(r); };
@@ -26,8 +28,11 @@ HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, co
   }
   links_.resize(offsets_[n]);
   cluster_links_.resize(cluster_offsets_[n]);
+  receiver_hidden_.resize(cluster_links_.size());
+  source_hidden_.resize(cluster_links_.size());
   std::vector<std::uint64_t> cursor(offsets_.begin(), offsets_.end() - 1);
   std::vector<std::uint64_t> cluster_cursor(cluster_offsets_.begin(), cluster_offsets_.end() - 1);
+  auto patches = [&](NodeRef r) { return is_cluster(r) ? tree->patches(cluster_index(r)).size() : std::size_t{0}; };
   for (const Link& l : links) {
     const std::size_t dp = dense(l.p), dq = dense(l.q);
     if (!with_cluster(l)) {
@@ -48,34 +53,67 @@ HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, co
       if (l.f_qp > 0.0) links_[cursor[dq]++] = directed(dp, l.shape_q, l.source_p, l.f_qp);
       continue;
     }
-    const Vec3 d = (geometry.shape(l.q).centre - geometry.shape(l.p).centre).normalized();  // p towards q
-    const std::array<float, 3> to_q = {static_cast<float>(d.x()), static_cast<float>(d.y()), static_cast<float>(d.z())};
+    // The direction as stored (in floats) is the one the projected areas are taken towards, so that
+    // the shares of a link sum to what it carries.
+    const Vec3 exact = (geometry.shape(l.q).centre - geometry.shape(l.p).centre).normalized();  // p towards q
+    const std::array<float, 3> to_q = {static_cast<float>(exact.x()), static_cast<float>(exact.y()), static_cast<float>(exact.z())};
     const std::array<float, 3> to_p = {-to_q[0], -to_q[1], -to_q[2]};
-    if (l.f_pq > 0.0) cluster_links_[cluster_cursor[dp]++] = {static_cast<std::int32_t>(dq), static_cast<float>(l.f_pq), to_q};
-    if (l.f_qp > 0.0) cluster_links_[cluster_cursor[dq]++] = {static_cast<std::int32_t>(dp), static_cast<float>(l.f_qp), to_p};
+    const Vec3 d(to_q[0], to_q[1], to_q[2]);
+    auto directed = [&](NodeRef receiver, NodeRef source, double f, const std::array<float, 3>& to_source,
+                        const Vec3& towards_source, const std::shared_ptr<const std::vector<int>>& receiver_hidden,
+                        const std::shared_ptr<const std::vector<int>>& source_hidden) {
+      ClusterLink c{static_cast<std::int32_t>(dense(source)), static_cast<float>(f), to_source, 0.0f};
+      if (is_cluster(receiver)) {
+        const double facing = geometry.projected_area(receiver, towards_source, receiver_hidden.get());
+        c.factor = facing > 0.0 ? static_cast<float>(f * geometry.shape(receiver).area / facing) : 0.0f;
+        cluster_receivers_ = true;
+      }
+      if (is_cluster(source)) {
+        const double shown = geometry.projected_area(source, -towards_source, source_hidden.get());
+        c.source_scale = shown > 0.0 ? static_cast<float>(1.0 / shown) : 0.0f;
+      }
+      cluster_terms_ += 1 + patches(receiver) + patches(source);
+      return c;
+    };
+    if (l.f_pq > 0.0) {
+      receiver_hidden_[cluster_cursor[dp]] = l.hidden_p;
+      source_hidden_[cluster_cursor[dp]] = l.hidden_q;
+      cluster_links_[cluster_cursor[dp]++] = directed(l.p, l.q, l.f_pq, to_q, d, l.hidden_p, l.hidden_q);
+    }
+    if (l.f_qp > 0.0) {
+      receiver_hidden_[cluster_cursor[dq]] = l.hidden_q;
+      source_hidden_[cluster_cursor[dq]] = l.hidden_p;
+      cluster_links_[cluster_cursor[dq]++] = directed(l.q, l.p, l.f_qp, to_p, -d, l.hidden_q, l.hidden_p);
+    }
   }
+  for (const Link& l : links)
+    for (const auto* hidden : {l.hidden_p.get(), l.hidden_q.get()})
+      if (hidden != nullptr) hidden_bytes_ += hidden->capacity() * sizeof(int);
+  if (cluster_receivers_) carried_.assign(cluster_links_.size(), Rgb::Zero());
 }
 
 std::uint64_t HsaLinks::bytes() const {
   return links_.capacity() * sizeof(DirectedLink) + cluster_links_.capacity() * sizeof(ClusterLink) +
-         (offsets_.capacity() + cluster_offsets_.capacity()) * sizeof(std::uint64_t);
+         (offsets_.capacity() + cluster_offsets_.capacity()) * sizeof(std::uint64_t) + carried_.capacity() * sizeof(Rgb) +
+         (receiver_hidden_.capacity() + source_hidden_.capacity()) * sizeof(std::shared_ptr<const std::vector<int>>) +
+         hidden_bytes_;
 }
 
-Rgb HsaLinks::shown(const NodeField& field, std::size_t source, const std::array<float, 3>& towards) const {
-  if (source < elements_) return field.radiosity[source];
-  // A cluster shows towards u the mean of its surfaces' radiosity weighted by their projected area
-  // towards u, from the per-axis means (Sillion 1995).
-  const std::size_t c = source - elements_;
-  const Cluster& k = tree_->cluster(static_cast<int>(c));
+Rgb HsaLinks::shown(const NodeField& field, std::uint64_t k) const {
+  const ClusterLink& l = cluster_links_[k];
+  const std::size_t source = static_cast<std::size_t>(l.source);
+  if (source < elements_) return source_hidden_[k] ? Rgb::Zero() : field.radiosity[source];
+  // A cluster shows towards the receiver (-u) the mean of its patches' radiosity weighted by their
+  // projected areas that way.
+  const std::vector<int>* hidden = source_hidden_[k].get();
   Rgb sum = Rgb::Zero();
-  double weight = 0.0;
-  for (int a = 0; a < 3; ++a) {
-    const double ua = towards[a];
-    const double w = ua > 0.0 ? ua * k.axis_plus[a] : -ua * k.axis_minus[a];
-    sum += w * field.shown[c][ua > 0.0 ? a : 3 + a];
-    weight += w;
+  for (const int patch : tree_->patches(static_cast<int>(source - elements_))) {
+    if (hidden != nullptr && std::binary_search(hidden->begin(), hidden->end(), patch)) continue;
+    const Patch& p = scene_.patches[static_cast<std::size_t>(patch)];
+    const double w = facing_cosine(p.normal, Vec3(-l.to_source[0], -l.to_source[1], -l.to_source[2]));
+    if (w > 0.0) sum += (p.area * w) * field.radiosity[static_cast<std::size_t>(h_.root(patch))];
   }
-  return weight > 0.0 ? Rgb(sum / weight) : field.radiosity[source];
+  return static_cast<double>(l.source_scale) * sum;
 }
 
 void HsaLinks::gather(NodeField& field) const {
@@ -93,34 +131,33 @@ void HsaLinks::gather(NodeField& field) const {
         }
         // An element receives what each source shows towards it.
         Rgb sum = Rgb::Zero();
-        for (std::uint64_t k = cluster_offsets_[i]; k < cluster_offsets_[i + 1]; ++k) {
-          const ClusterLink& l = cluster_links_[k];
-          const std::array<float, 3> back = {-l.to_source[0], -l.to_source[1], -l.to_source[2]};
-          sum += static_cast<double>(l.factor) * shown(field, static_cast<std::size_t>(l.source), back);
-        }
+        for (std::uint64_t k = cluster_offsets_[i]; k < cluster_offsets_[i + 1]; ++k)
+          if (!receiver_hidden_[k]) sum += static_cast<double>(cluster_links_[k].factor) * shown(field, k);
         add_constant(h, sum);
         continue;
       }
-      // A cluster receives the link's power A_R F B_S, spread over its surfaces by their projected
-      // area towards the source, per signed axis, so that what its surfaces get sums to that power
-      // (Sillion 1995, oriented receivers; exact for axis-aligned surfaces in the far field).
-      const std::size_t c = i - elements_;
-      const Cluster& kc = tree_->cluster(static_cast<int>(c));
-      AxisBins& bins = field.received[c];
-      for (std::uint64_t k = cluster_offsets_[i]; k < cluster_offsets_[i + 1]; ++k) {
-        const ClusterLink& l = cluster_links_[k];
-        const std::array<float, 3> back = {-l.to_source[0], -l.to_source[1], -l.to_source[2]};
-        double facing = 0.0;
-        for (int a = 0; a < 3; ++a)
-          facing += l.to_source[a] > 0.0f ? l.to_source[a] * kc.axis_plus[a] : -l.to_source[a] * kc.axis_minus[a];
-        if (!(facing > 0.0)) continue;
-        const Rgb power = (static_cast<double>(l.factor) * kc.area / facing) * shown(field, static_cast<std::size_t>(l.source), back);
-        for (int a = 0; a < 3; ++a) {
-          const double da = l.to_source[a];
-          if (da > 0.0) bins[a] += da * power;
-          else if (da < 0.0) bins[3 + a] += -da * power;
+      for (std::uint64_t k = cluster_offsets_[i]; k < cluster_offsets_[i + 1]; ++k)
+        carried_[k] = static_cast<double>(cluster_links_[k].factor) * shown(field, k);
+    }
+  });
+  if (!cluster_receivers_) return;
+  // Each patch's shares of what its clusters received (Sillion 1995, oriented receivers with each
+  // patch's exact projected area): it joins the irradiance gathered at the patch's root.
+  tbb::parallel_for(tbb::blocked_range<int>(0, h_.patch_count(), 64), [&](const tbb::blocked_range<int>& range) {
+    for (int p = range.begin(); p != range.end(); ++p) {
+      const Vec3& n = scene_.patches[static_cast<std::size_t>(p)].normal;
+      Rgb sum = Rgb::Zero();
+      for (int c = tree_->parent_of_patch(p); c >= 0; c = tree_->cluster(c).parent) {
+        const std::size_t i = elements_ + static_cast<std::size_t>(c);
+        for (std::uint64_t k = cluster_offsets_[i]; k < cluster_offsets_[i + 1]; ++k) {
+          const std::vector<int>* hidden = receiver_hidden_[k].get();
+          if (hidden != nullptr && std::binary_search(hidden->begin(), hidden->end(), p)) continue;
+          const std::array<float, 3>& u = cluster_links_[k].to_source;
+          const double w = facing_cosine(n, Vec3(u[0], u[1], u[2]));
+          if (w > 0.0) sum += w * carried_[k];
         }
       }
+      add_constant(field.irradiance[static_cast<std::size_t>(h_.root(p))], sum);
     }
   });
 }

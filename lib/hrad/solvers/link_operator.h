@@ -13,12 +13,6 @@
 
 namespace hrad {
 
-/// Per signed axis (+x, +y, +z, -x, -y, -z): what a cluster shows or receives towards that side
-/// (Sillion 1995's oriented clusters, with the six axis directions as the basis).
-using AxisBins = std::array<Rgb, 6>;
-
-inline AxisBins zero_bins() { return {Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero()}; }
-
 /// A field over one element by its values at the element's simpson_points() (formfactor/
 /// simpson_rule.h): biquadratic on a quad's bilinear map (9 values), quadratic on a triangle (the
 /// values at the vertices and edge midpoints; the 7th, at the centroid, is the quadratic's value
@@ -42,9 +36,7 @@ struct NodeField {
   std::vector<PointValues> radiosity_moments;
   /// Per element: a leaf's radiosity at its points, E + rho H there (for display; interior: unset).
   std::vector<PointValues> point_radiosity;
-  std::vector<AxisBins> shown;   ///< per cluster: its surfaces' radiosity weighted by projected area per axis
   std::vector<PointValues> irradiance;  ///< per element: gathered at this node, to be pushed to its leaves
-  std::vector<AxisBins> received;  ///< per cluster: gathered power per unit area, spread over its surfaces per axis
 
   void resize(std::size_t element_count, std::size_t cluster_count) {
     elements = element_count;
@@ -54,12 +46,9 @@ struct NodeField {
     irradiance.assign(element_count, zero);
     radiosity_moments.assign(element_count, zero);
     point_radiosity.assign(element_count, zero);
-    shown.assign(cluster_count, zero_bins());
-    received.assign(cluster_count, zero_bins());
   }
   void clear_gathered() {
     for (PointValues& v : irradiance) v.fill(Rgb::Zero());
-    std::fill(received.begin(), received.end(), zero_bins());
   }
 };
 
@@ -67,8 +56,8 @@ class LinkOperator {
  public:
   virtual ~LinkOperator() = default;
   /// Adds what each receiver gathers through its links (factor times the radiosity its source
-  /// shows towards it) to field.irradiance (elements) and field.received (clusters). Reads
-  /// field.radiosity and field.shown. Deterministic: the same bits at any thread count.
+  /// shows towards it) to field.irradiance (a cluster's share of its patches at their roots).
+  /// Reads field.radiosity. Deterministic: the same bits at any thread count.
   virtual void gather(NodeField& field) const = 0;
   /// Terms one gather touches (one factor times one radiosity each).
   virtual std::uint64_t terms() const = 0;

@@ -198,30 +198,11 @@ void PushPull::pull_moments(NodeField& field, NodeId id) const {
 }
 
 LeafChange PushPull::push_pull(NodeField& field) const {
-  // Clusters top-down (children have larger indices than their parent): what each has received,
-  // plus its ancestors'.
-  std::vector<AxisBins> cluster_down;
-  if (tree_ != nullptr) {
-    cluster_down = field.received;
-    for (std::size_t c = 0; c < tree_->size(); ++c) {
-      const int parent = tree_->cluster(static_cast<int>(c)).parent;
-      if (parent >= 0)
-        for (int a = 0; a < 6; ++a) cluster_down[c][a] += cluster_down[static_cast<std::size_t>(parent)][a];
-    }
-  }
   std::vector<LeafChange> per_patch(static_cast<std::size_t>(h_.patch_count()));
   tbb::parallel_for(tbb::blocked_range<int>(0, h_.patch_count(), 8), [&](const tbb::blocked_range<int>& range) {
     for (int p = range.begin(); p != range.end(); ++p) {
-      // The patch's share of its clusters' bins: its irradiance from the cluster links.
-      Rgb from_clusters = Rgb::Zero();
       PointValues down;
-      const int parent = tree_ != nullptr ? tree_->parent_of_patch(p) : -1;
-      if (parent >= 0) {
-        const Vec3& n = scene_.patches[static_cast<std::size_t>(p)].normal;
-        const AxisBins& bins = cluster_down[static_cast<std::size_t>(parent)];
-        for (int a = 0; a < 3; ++a) from_clusters += n[a] > 0.0 ? Rgb(n[a] * bins[a]) : Rgb(-n[a] * bins[3 + a]);
-      }
-      down.fill(from_clusters);
+      down.fill(Rgb::Zero());
       push_pull_element(field, h_.root(p), down, &per_patch[static_cast<std::size_t>(p)]);
     }
   });
@@ -267,32 +248,14 @@ void PushPull::pull_clusters(NodeField& field) const {
   for (std::size_t c = tree_->size(); c-- > 0;) {
     const Cluster& k = tree_->cluster(static_cast<int>(c));
     Rgb sum = Rgb::Zero();
-    AxisBins weighted = zero_bins();
     for (const NodeRef child : k.children) {
       if (is_cluster(child)) {
-        const std::size_t ci = static_cast<std::size_t>(cluster_index(child));
-        const Cluster& kc = tree_->cluster(cluster_index(child));
-        sum += kc.area * field.radiosity[base + ci];
-        for (int a = 0; a < 3; ++a) {
-          weighted[a] += kc.axis_plus[a] * field.shown[ci][a];
-          weighted[3 + a] += kc.axis_minus[a] * field.shown[ci][3 + a];
-        }
+        sum += tree_->cluster(cluster_index(child)).area * field.radiosity[base + static_cast<std::size_t>(cluster_index(child))];
       } else {
-        const ElementNode& e = h_.node(child);
-        const Rgb& b = field.radiosity[static_cast<std::size_t>(child)];
-        sum += e.area * b;
-        const Vec3& n = scene_.patches[static_cast<std::size_t>(e.patch)].normal;
-        for (int a = 0; a < 3; ++a) {
-          weighted[a] += e.area * std::max(0.0, n[a]) * b;
-          weighted[3 + a] += e.area * std::max(0.0, -n[a]) * b;
-        }
+        sum += h_.node(child).area * field.radiosity[static_cast<std::size_t>(child)];
       }
     }
     field.radiosity[base + c] = sum / k.area;
-    for (int a = 0; a < 3; ++a) {
-      field.shown[c][a] = k.axis_plus[a] > 0.0 ? Rgb(weighted[a] / k.axis_plus[a]) : Rgb::Zero();
-      field.shown[c][3 + a] = k.axis_minus[a] > 0.0 ? Rgb(weighted[3 + a] / k.axis_minus[a]) : Rgb::Zero();
-    }
   }
 }
 

@@ -1,9 +1,8 @@
 // Push-pull (Hanrahan, Salzman & Aupperle 1991, "PushPullRad"), written once for every solver: the
-// irradiance gathered at a node is pushed down to the leaves below it (through the clusters into
-// the patches' quadtrees, where a cluster's received power goes to each patch by its projected area
-// per axis, Sillion 1995), each leaf gets B = E + rho H with H the mean of the irradiance field over
-// it, and the radiosity is pulled back up as the area mean (and, for clusters, the projected-area-
-// weighted mean shown towards each axis). The irradiance gathered at an element is a field given
+// irradiance gathered at an element is pushed down to the leaves below it (what clusters receive
+// reaches the patches' roots in the gather, hsa_links.h), each leaf gets B = E + rho H with H the
+// mean of the irradiance field over it, and the radiosity is pulled back up as the area mean, into
+// the clusters too. The irradiance gathered at an element is a field given
 // by its values at the element's points (link_operator.h PointValues); it is pushed to a child by
 // evaluating the parent's polynomial at the child's points, which is exact. The radiosity's moments
 // against the same basis (link_operator.h NodeField::radiosity_moments) are pulled up by the
@@ -39,10 +38,10 @@ class PushPull {
   /// nodes (their emission before any solve; with the linear basis also at the leaves' points) and
   /// everything above pulled from it.
   NodeField make_field() const;
-  /// Pushes field.irradiance and field.received down, sets every leaf's radiosity to E + rho H and
+  /// Pushes field.irradiance down, sets every leaf's radiosity to E + rho H and
   /// pulls; returns the leaves' largest change. Parallel over patches, deterministic.
   LeafChange push_pull(NodeField& field) const;
-  /// Sets interior elements' and clusters' radiosity (and clusters' shown bins) from the leaves'.
+  /// Sets interior elements' and clusters' radiosity from the leaves'.
   void pull(NodeField& field) const;
   /// Copies the field's element radiosity into the hierarchy's nodes (for output and the B*F test)
   /// and the clusters' mean radiosity into `cluster_radiosity` (when not null).

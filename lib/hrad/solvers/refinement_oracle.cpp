@@ -24,6 +24,9 @@ constexpr double kGaussSeparation = 0.25;
 // 1e-12 to 1e-7 relative, which no sum ever notices.
 constexpr double kNegligibleFactor = 1e-6;
 constexpr double kLinkAbsoluteTolerance = 1e-9;
+// Rays per facing patch of a cluster link's ends before the patch counts as seeing nothing of the
+// other end (ErrorBoundOracle::decide_with_cluster()).
+constexpr int kFacingRays = 4;
 
 // One side of an element pair: the receiver's points, their unoccluded point factors to the
 // source, and their visible fractions of it.
@@ -262,6 +265,7 @@ void ErrorBoundOracle::decide(Candidate& c) const {
   c.decision = Decision::kDrop;
   c.f_pq = c.f_qp = 0.0;
   c.partial = false;
+  c.hidden_p = c.hidden_q = nullptr;
   c.shadow_p = c.shadow_q = c.share_p = c.share_q = 0.0f;
   if (c.split_p && can_split(c.p)) {
     // Asked to split p (refine.h: the shadow errors below p add up past the tolerance).
@@ -421,16 +425,36 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
                                                       static_cast<std::uint32_t>(c.q),
                                                   7);
       const FormFactorEstimate e = evaluator_.sampled(surfaces_p, surfaces_q, evaluator_.visibility_samples(), seed);
-      const double error_qp = e.error * sp.area / sq.area;
-      const auto [e_p, e_q] = weighted(c.p, c.q, far.value * variation + e.error, far.reverse * variation + error_qp);
+      // The link shares its power among each side's patches by their projected areas towards the
+      // other's centre (hsa_links.h), as the far-field factor does: where the sampled unoccluded
+      // factor strays from it by more than its noise, the shares would put that much in the wrong
+      // places (patches grazing the centre direction that do face parts of the other side).
+      const double stray = std::max(0.0, std::abs(e.unoccluded - far.value) - 2.0 * e.error);
+      const double error_pq = std::max(far.value * variation, stray) + e.error;
+      const double error_qp = error_pq * sp.area / sq.area;
+      const auto [e_p, e_q] = weighted(c.p, c.q, error_pq, error_qp);
       if (std::max(e_p, e_q) <= 1.0) {
-        if (e.value > 0.0 || e.reverse > 0.0) {
+        if (!(e.value > 0.0) && !(e.reverse > 0.0)) return;
+        // The patches that face the other node but see nothing of it (the inside of a closed box
+        // lit from outside) get no share of the link and show nothing through it: light never
+        // reaches a surface through a link it cannot see through. Nor may a patch get more through
+        // the link than any point of it can see of the other side (TransferBound): patches grazing
+        // the centre direction would get it all when no other faces; such pairs are split.
+        const Vec3 d = (sq.centre - sp.centre) / r;
+        std::vector<int> hidden_p = evaluator_.hidden_surfaces(surfaces_p, d, surfaces_q, kFacingRays, detail::mix_seed(seed, 1));
+        std::vector<int> hidden_q = evaluator_.hidden_surfaces(surfaces_q, -d, surfaces_p, kFacingRays, detail::mix_seed(seed, 2));
+        const TransferBound most = geometry_.bound(sp, sq);
+        const double exchange = e.value * sp.area;
+        if (!(exchange * geometry_.largest_share(c.p, d, &hidden_p) > most.pq) &&
+            !(exchange * geometry_.largest_share(c.q, -d, &hidden_q) > most.qp)) {
           c.decision = Decision::kLink;
           c.f_pq = e.value;
           c.f_qp = e.reverse;
           c.partial = true;
+          if (!hidden_p.empty()) c.hidden_p = std::make_shared<const std::vector<int>>(std::move(hidden_p));
+          if (!hidden_q.empty()) c.hidden_q = std::make_shared<const std::vector<int>>(std::move(hidden_q));
+          return;
         }
-        return;
       }
     }
   }

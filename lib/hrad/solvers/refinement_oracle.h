@@ -46,6 +46,10 @@ struct Candidate {
   double f_pq = 0.0;
   double f_qp = 0.0;
   bool partial = false;  ///< linked with a visible fraction strictly between 0 and 1 (or sampled)
+  /// A link with a cluster end: the patches of p (of q) that face the other end but see nothing of
+  /// it (sorted patch indices; null when none). They get no share of the link and show nothing
+  /// through it (hsa_links.h).
+  std::shared_ptr<const std::vector<int>> hidden_p = nullptr, hidden_q = nullptr;
   /// A partly visible link's error from giving each side the link's visible fraction, as the
   /// weighted test counts it (1 = the tolerance): what its receiver gathers errs by this much where
   /// the visibility differs from the fraction.
