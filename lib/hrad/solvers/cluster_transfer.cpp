@@ -69,6 +69,30 @@ bool listed(const std::vector<int>* patches, int patch) {
 
 }  // namespace
 
+bool ClusterTransfer::patches_face_away(NodeRef p, NodeRef q) const {
+  auto box = [&](NodeRef r) {
+    Eigen::AlignedBox3d b;
+    if (is_cluster(r)) {
+      const Cluster& c = tree_->cluster(cluster_index(r));
+      b.extend(c.lo).extend(c.hi);
+    } else {
+      for (const Vec3& v : h_.node(r).polygon()) b.extend(v);
+    }
+    return b;
+  };
+  auto all_behind = [&](NodeRef from, NodeRef to) {
+    const Eigen::AlignedBox3d b = box(to);
+    for (int k = 0, n = patch_count(from); k < n; ++k) {
+      const int patch = is_cluster(from) ? tree_->patches(cluster_index(from))[static_cast<std::size_t>(k)] : h_.node(from).patch;
+      const Patch& s = scene_.patches[static_cast<std::size_t>(patch)];
+      for (int corner = 0; corner < 8; ++corner)
+        if ((b.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)) - s.vertices[0]).dot(s.normal) > 0.0) return false;
+    }
+    return true;
+  };
+  return all_behind(p, q) || all_behind(q, p);
+}
+
 double ClusterTransfer::projected_area(NodeRef r, const Vec3& d, const std::vector<int>* hidden) const {
   if (is_cluster(r) && hidden == nullptr) return tree_->projected_area(cluster_index(r), d);
   double sum = 0.0;

@@ -46,6 +46,9 @@ class ClusterTransfer {
   /// True when nothing of q lies strictly in front of element p's plane or the other way round
   /// (exactly zero transfer); only decided when one of them is an element.
   bool facing_away(NodeRef p, NodeRef q) const;
+  /// True when every patch of p has all of q's bounding box on or behind its plane, or every patch
+  /// of q all of p's (exactly zero transfer, for clusters too; costs a test per patch).
+  bool patches_face_away(NodeRef p, NodeRef q) const;
   /// The far-field factors without visibility (value F(p -> q), reverse F(q -> p); facing_away
   /// when either side shows no surface to the other).
   FormFactorEstimate far_field(NodeRef p, const NodeShape& sp, NodeRef q, const NodeShape& sq) const;

@@ -417,9 +417,11 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
     // / r, of the factor (HSA 1991 sec. 4's error of a link, rather than the factor's size).
     const double variation = 2.0 * reach / r;
     const FormFactorEstimate far = geometry_.far_field(c.p, sp, c.q, sq);
-    if (far.facing_away) return;
+    // No patch of one side faces the other's centre: dropped only when nothing faces any of the
+    // other (dropping pairs that graze would lose their exchange); otherwise split below.
+    if (far.facing_away && geometry_.patches_face_away(c.p, c.q)) return;
     const auto [b_p, b_q] = weighted(c.p, c.q, far.value * variation, far.reverse * variation);
-    if (std::max(b_p, b_q) <= 1.0) {
+    if (!far.facing_away && std::max(b_p, b_q) <= 1.0) {
       const NodeSurfaces surfaces_p(geometry_, c.p, sp.area), surfaces_q(geometry_, c.q, sq.area);
       const std::uint64_t seed = detail::mix_seed((static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.p)) << 32) |
                                                       static_cast<std::uint32_t>(c.q),
