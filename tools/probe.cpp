@@ -34,8 +34,10 @@
 //                          exitance) or W/m2 (radiant exitance of white light); the results then
 //                          gain a column illuminance_lux (lib/hrad/gather/photometry.h: Radiance's
 //                          luminance weights, and 179 lm/W for W/m2)
-//   --isolux IMAGE.png     with --grid: a false-colour isolux plot of the grid (u to the right, v up;
-//                          lib/hrad/render/isolux_image.h), bands between round levels, isolines and
+//   --isolux IMAGE.png     with --grid: a false-colour isolux plot of the grid as seen from the side
+//                          its points face (u to the right; v up, or down where u x v points the
+//                          other way, as for y; lib/hrad/render/isolux_image.h), bands between
+//                          round levels, isolines and
 //                          a labelled colour bar; in lux with --emission-units, otherwise the
 //                          luminance-weighted irradiance in the scene's units
 //   --quiet                no progress on stderr
@@ -208,6 +210,8 @@ void add_probe_command(CLI::App& app) {
       IsoluxOptions io;
       io.aspect = (grid->u1 - grid->u0) / (grid->v1 - grid->v0);
       io.unit = units ? "lx" : "";
+      // Seen from the side the sensors face: v up when u x v points that way (x, y for z; y, z for x).
+      io.v_down = (grid->axis == 1) == grid->facing_positive;
       const IsoluxImage plot = render_isolux(lux, grid->nu, grid->nv, io);
       write_png(args->isolux, plot.image);
     }

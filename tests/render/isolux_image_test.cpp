@@ -88,6 +88,26 @@ TEST(IsoluxImage, IsolinesOfARampLieWhereItCrossesTheLevels) {
   for (int k = 0; k < 5; ++k) EXPECT_EQ(bar.count(sequential_colormap((k + 0.5) / 5)), 1u) << k;
 }
 
+// A ramp along v (row j holds 100 j): v runs up the plot, or down with v_down; the lowest band is
+// at the bottom, or at the top.
+TEST(IsoluxImage, VRunsUpOrDown) {
+  std::vector<double> values;
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 2; ++i) values.push_back(100.0 * j);
+  IsoluxOptions o;
+  o.long_side = 100;
+  const IsoluxImage up = render_isolux(values, 2, 5, o);
+  o.v_down = true;
+  const IsoluxImage down = render_isolux(values, 2, 5, o);
+  ASSERT_EQ(up.levels, down.levels);
+  const int bands = static_cast<int>(up.levels.size()) + 1;
+  const Rgb8 lowest = sequential_colormap(0.5 / bands), highest = sequential_colormap((bands - 0.5) / bands);
+  EXPECT_EQ(up.image.at(50, 99), lowest);
+  EXPECT_EQ(up.image.at(50, 0), highest);
+  EXPECT_EQ(down.image.at(50, 0), lowest);
+  EXPECT_EQ(down.image.at(50, 99), highest);
+}
+
 TEST(IsoluxImage, BadGridsAreErrors) {
   const std::vector<double> v(6, 1.0);
   EXPECT_THROW(render_isolux(v, 2, 2), Error);

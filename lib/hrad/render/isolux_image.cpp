@@ -64,12 +64,13 @@ IsoluxImage render_isolux(std::span<const double> values, int nu, int nv, const 
   auto band_colour = [&](int b) { return sequential_colormap(bands > 1 ? (b + 0.5) / bands : 0.5); };
   auto value = [&](int i, int j) { return values[static_cast<std::size_t>(j) * nu + i]; };
 
-  // The interpolated value's band at each pixel centre (u right, v up).
+  // The interpolated value's band at each pixel centre (u right, v up or down).
   std::vector<int> band(static_cast<std::size_t>(w) * h);
   for (int py = 0; py < h; ++py)
     for (int px = 0; px < w; ++px) {
       const double gu = std::clamp((px + 0.5) / w * nu - 0.5, 0.0, nu - 1.0);
-      const double gv = std::clamp((1.0 - (py + 0.5) / h) * nv - 0.5, 0.0, nv - 1.0);
+      const double down = (py + 0.5) / h;
+      const double gv = std::clamp((o.v_down ? down : 1.0 - down) * nv - 0.5, 0.0, nv - 1.0);
       const int i = std::min(static_cast<int>(gu), std::max(0, nu - 2));
       const int j = std::min(static_cast<int>(gv), std::max(0, nv - 2));
       const int i1 = std::min(i + 1, nu - 1), j1 = std::min(j + 1, nv - 1);

@@ -3,7 +3,8 @@
 // interpolated at every pixel (held constant beyond the outer centres), coloured in bands between
 // round levels (1, 2, 2.5 or 5 times a power of ten), each level's isoline drawn dark where the
 // band changes between neighbouring pixels, and on the right a colour bar with every level labelled.
-// The rectangle's u axis runs to the right and its v axis up.
+// The rectangle's u axis runs to the right and its v axis up, or down (IsoluxOptions::v_down: so
+// that the plot shows the plane as seen from the side its sensors face).
 #pragma once
 
 #include <span>
@@ -24,6 +25,7 @@ struct IsoluxOptions {
   double aspect = 1.0;    ///< the rectangle's width / height (u extent / v extent)
   int target_levels = 8;  ///< at most this many levels (isolux_levels)
   std::string unit;       ///< written after each label ("lx"); empty for none
+  bool v_down = false;    ///< v runs down the plot instead of up
 };
 
 struct IsoluxImage {
