@@ -206,6 +206,13 @@ void add_sweep_command(CLI::App& app) {
       if (args->visibility_samples > 0) o << " --visibility-samples " << args->visibility_samples;
       if (args->no_gather) o << " --no-gather";
       if (cmd->count("--gather-tolerance")) o << " --gather-tolerance " << args->gather_tolerance;
+      // Every other option given, so that the line reruns exactly this sweep.
+      if (cmd->count("--samples")) o << " --samples " << args->samples;
+      if (cmd->count("--target-error")) o << " --target-error " << args->target_error;
+      if (cmd->count("--feps-aeps")) o << " --feps-aeps " << args->feps_aeps;
+      if (cmd->count("--push")) o << " --push " << args->push;
+      if (cmd->count("--basis")) o << " --basis " << args->basis;
+      if (cmd->count("--threads")) o << " --threads " << args->threads;
       o << "\n";
     });
     run_plot("pareto.py", {dir + "/sweep.csv", dir + "/pareto.png", "What accuracy costs in time: " + scene.path});

@@ -142,7 +142,6 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   const auto linear_aeps = runs("hierarchical_linear", "aeps");
   ASSERT_EQ(linear_aeps.size(), 3u);
   EXPECT_LT(linear_aeps.back().error_l2, linear_aeps.front().error_l2);
-  for (const Row& row : full) EXPECT_EQ(row.links, row.elements * row.elements);
   EXPECT_LT(full.front().elements, full.back().elements);
   EXPECT_LT(full.back().error_l2, full.front().error_l2);
   EXPECT_LT(full.back().error_l2_smooth, full.front().error_l2_smooth);
@@ -160,7 +159,6 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   // (substructuring's element counts collide here, 102 twice: fewer than 3 distinct, no fit)
   for (const char* method : {"full", "hierarchical"})
     EXPECT_TRUE(fit["methods"][method].at("time_vs_elements").contains("b")) << method;
-  EXPECT_NEAR(fit["methods"]["full"]["links_vs_elements"]["b"].get<double>(), 2.0, 1e-6);  // n^2 links
   EXPECT_TRUE(fit["methods"]["hierarchical"].at("error_vs_feps").contains("b"));
   EXPECT_TRUE(fit.contains("speedup"));
 
@@ -199,7 +197,11 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
     EXPECT_EQ(without_seconds(a), without_seconds(b)) << a << "\n" << b;
   }
   EXPECT_EQ(nlohmann::json::parse(slurp(again + "/reference.json")).at("reused_from"), out);
-  EXPECT_NE(slurp(again + "/command.txt").find("--reference-from"), std::string::npos);
+  // command.txt reruns the sweep: every option given is in it.
+  const std::string command = slurp(again + "/command.txt");
+  for (const char* given : {"--quick", "--elements 128", "--patches 20", "--feps 0.3", "--aeps 0.001", "--basis constant",
+                            "--reference-from"})
+    EXPECT_NE(command.find(given), std::string::npos) << given << " missing from " << command;
   // Another scene's samples are refused before anything runs, naming the file.
   const RunResult wrong = run_hrad("sweep notebooks_data/scenes/cornell_box.obj --quick --reference-from " + out +
                                    " --out " + dir.path("wrong"), dir);

@@ -327,7 +327,10 @@ EqualTimeFigure equal_time_figure(const Scene& scene, const EqualTimeOptions& op
         best_miss = miss;
         best = std::move(run);
       }
-      const double next = std::clamp(n * std::pow(fig.budget_seconds / t, 1.0 / exponent), 8.0, 16384.0);
+      // At most a quarter of the reference's elements: the reference must be finer than every run it judges
+      // (a run on its mesh would differ from it by the solver's tolerance only).
+      const double next = std::clamp(n * std::pow(fig.budget_seconds / t, 1.0 / exponent), 8.0,
+                                     std::max(8.0, options.reference_elements / 4));
       if (std::abs(std::log(next / n)) < 0.05) break;
       n = next;
     }
