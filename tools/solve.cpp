@@ -18,7 +18,8 @@
 //                          q the contraction per iteration estimated from successive changes
 //                          (default 1e-6)
 //   --max-iterations N     iteration limit (default 10000); reaching it is a status, not an error
-//   --linear-solver S      full: lu (default, direct), jacobi or gauss_seidel
+//   --linear-solver S      full: lu (default, direct), jacobi or gauss_seidel; with --basis linear
+//                          jacobi (the default there, the only one offered)
 //   --effects auto|all     auto (default) simulates only what the scene needs (visibility, colour,
 //                          bounces); all forces everything on (same answer, slower)
 //   --kernel contour|analytic
@@ -37,8 +38,10 @@
 //                          rooms, one term per leaf and link on its path)
 //   --basis constant|linear
 //                          the radiosity over each element: constant (default), or linear (bilinear
-//                          on quads), the L2 projection of E + rho H (hierarchical with --push hsa;
-//                          lib/hrad/solvers/linear_basis.h)
+//                          on quads), the L2 projection of E + rho H (every method; hierarchical
+//                          with --push hsa; lib/hrad/solvers/linear_basis.h, field_links.h)
+//   --balance              balance the leaves after meshing or refinement (a restricted quadtree: at
+//                          most one level between edge neighbours, so no long T-edges in the output)
 //   --threads N            worker threads (default: all cores)
 //   --report R.json        the solve report (see lib/hrad/report/report_json.h)
 // Every solve prints where the power went (reference/power_balance.h): emitted, absorbed, onto
@@ -74,7 +77,7 @@ void add_solve_command(CLI::App& app) {
                 push = "hsa", basis = "constant", report, out;
     double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
     int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0;
-    bool quiet = false;
+    bool quiet = false, balance = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("SCENE", args->scene, "Scene file (.obj)")->required();
@@ -87,27 +90,31 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--tolerance", args->tolerance,
                   "Stop when the estimated relative error (last change x q/(1-q), q the contraction) is below this (default 1e-6)");
   cmd->add_option("--max-iterations", args->max_iterations, "Iteration limit (default 10000)");
-  cmd->add_option("--linear-solver", args->linear_solver, "Full: lu | jacobi | gauss_seidel (default lu)");
+  auto* linear_solver = cmd->add_option("--linear-solver", args->linear_solver,
+                                        "Full: lu | jacobi | gauss_seidel (default lu; with --basis linear jacobi)");
   cmd->add_option("--effects", args->effects, "auto | all (default auto)");
   cmd->add_option("--kernel", args->kernel, "Full/substructure: form-factor kernel: contour (default) | analytic (hierarchical: always analytic)");
   cmd->add_option("--visibility-samples", args->visibility_samples, "Point pairs per partially visible pair (default 64)");
   cmd->add_option("--clustering", args->clustering, "Hierarchical: auto | on | off (default auto: on from 200 patches)");
   cmd->add_option("--push", args->push, "Hierarchical: hsa (default, O(links) gather) | leaf (links resolved to leaves)");
-  cmd->add_option("--basis", args->basis, "Radiosity per element: constant (default) | linear (hierarchical, --push hsa)");
+  cmd->add_option("--basis", args->basis, "Radiosity per element: constant (default) | linear (hierarchical: --push hsa)");
+  cmd->add_flag("--balance", args->balance, "At most one level between edge neighbours (no long T-edges)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--report", args->report, "Write the solve report (JSON) here");
   cmd->add_option("--out", args->out, "Write the leaf mesh (PLY) here");
   cmd->add_option("--exposure", args->exposure, "Vertex-colour exposure for --out (default automatic)");
   cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
-  cmd->callback([cmd, args] {
+  cmd->callback([cmd, args, linear_solver] {
     SolveOptions o;
     o.method = parse_method(args->method);
-    o.linear_solver = parse_linear_solver(args->linear_solver);
+    // Linear elements iterate their corner values: Jacobi unless the option says otherwise.
+    o.linear_solver = parse_linear_solver(args->basis == "linear" && linear_solver->count() == 0 ? "jacobi" : args->linear_solver);
     o.effects = parse_effects_mode(args->effects);
     o.kernel = parse_kernel(args->kernel);
     o.clustering = parse_clustering(args->clustering);
     o.push = parse_push(args->push);
     o.basis = parse_basis(args->basis);
+    o.balance = args->balance;
     // Given on the command line, an area or tolerance must be a positive number (0 is "automatic"
     // only when the option is left out).
     for (const auto& [name, value] : {std::pair<const char*, double>{"--max-area", args->max_area},

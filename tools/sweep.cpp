@@ -5,7 +5,8 @@
 //   full          element size (max_area = total area / n, n = 64 .. 9000), Gauss-Seidel
 //   substructure  element size (the same n, input polygons shoot) and shooting-patch size
 //   hierarchical  feps (0.3 .. 0.001, aeps automatic) and aeps (1e-2 .. 1.5e-5 of the total area),
-//                 once per basis (--basis: constant, and linear as method hierarchical_linear)
+// each once per basis (--basis: constant, and linear as methods full_linear (Jacobi),
+// substructure_linear and hierarchical_linear)
 // and judges every run against one reference (a full-matrix LU solve, 4 x the finest full run and at
 // most 4096 elements unless --reference-elements, final-gathered at the error samples) on fixed
 // samples on every surface. Writes:
@@ -92,7 +93,7 @@ void add_sweep_command(CLI::App& app) {
                   "The smallest-element area of the feps runs, as a fraction of the total area (default automatic)");
   cmd->add_option("--push", args->push, "Hierarchical link operators to run, comma-separated: hsa, leaf (default hsa)");
   cmd->add_option("--basis", args->basis,
-                  "Hierarchical (hsa) bases to run, comma-separated: constant, linear (default constant,linear)");
+                  "Bases to run for every method (hierarchical: with hsa), comma-separated: constant, linear (default constant,linear)");
   cmd->add_option("--visibility-samples", args->visibility_samples,
                   "Point pairs per partly visible pair in every run (default: the solvers'); the reference uses 4x");
   cmd->add_flag("--no-gather", args->no_gather, "Do not final-gather the runs (error_l2_gathered is nan)");

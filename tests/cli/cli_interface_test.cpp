@@ -123,9 +123,9 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
     EXPECT_GT(rows.back().error_l2, 0.0) << line;
     EXPECT_LT(rows.back().error_l2, 1.0) << line;
   }
-  // --quick: 3 element counts for full and substructuring, 3 patch counts, 3 feps and 3 aeps once
-  // per hierarchical basis (constant, linear).
-  ASSERT_EQ(rows.size(), 21u);
+  // --quick: 3 element counts for full and substructuring, 3 patch counts, 3 feps and 3 aeps, each
+  // once per basis (constant, linear).
+  ASSERT_EQ(rows.size(), 30u);
   auto runs = [&](const std::string& method, const std::string& parameter) {
     std::vector<Row> v;
     for (const Row& row : rows)
@@ -142,6 +142,15 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   const auto linear_aeps = runs("hierarchical_linear", "aeps");
   ASSERT_EQ(linear_aeps.size(), 3u);
   EXPECT_LT(linear_aeps.back().error_l2, linear_aeps.front().error_l2);
+  const auto full_linear = runs("full_linear", "max_area");
+  ASSERT_EQ(full_linear.size(), 3u);
+  EXPECT_EQ(runs("substructure_linear", "max_area").size(), 3u);
+  EXPECT_EQ(runs("substructure_linear", "patch_area").size(), 3u);
+  for (std::size_t k = 0; k < full.size(); ++k) {
+    // The same meshes with each basis: linear elements must do better on each.
+    EXPECT_EQ(full_linear[k].elements, full[k].elements);
+    EXPECT_LT(full_linear[k].error_l2, full[k].error_l2);
+  }
   EXPECT_LT(full.front().elements, full.back().elements);
   EXPECT_LT(full.back().error_l2, full.front().error_l2);
   EXPECT_LT(full.back().error_l2_smooth, full.front().error_l2_smooth);
@@ -154,7 +163,7 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   EXPECT_EQ(ref.at("scene"), "notebooks_data/scenes/simple_room.obj");
 
   const auto fit = nlohmann::json::parse(slurp(out + "/fit.json"));
-  for (const char* method : {"full", "substructure", "hierarchical", "hierarchical_linear"})
+  for (const char* method : {"full", "substructure", "hierarchical", "full_linear", "substructure_linear", "hierarchical_linear"})
     EXPECT_TRUE(fit.at("methods").at(method).at("time_to_target_error").contains("reached")) << method;
   // (substructuring's element counts collide here, 102 twice: fewer than 3 distinct, no fit)
   for (const char* method : {"full", "hierarchical"})

@@ -39,8 +39,9 @@ TEST(SweepGathered, FurnaceRunsGatherTheClosedFormEverywhere) {
       EXPECT_NEAR(g[c], rho * e / (1 - rho), 1e-9 * e / (1 - rho));
     }
   const std::vector<SweepRow> rows = run_sweep(box, reference, o);
-  // Full and substructuring at 2 element counts, one shooting-patch size, one feps and one aeps.
-  ASSERT_EQ(rows.size(), 7u);
+  // Full and substructuring at 2 element counts and one shooting-patch size, each with both bases;
+  // one feps and one aeps with the leaf push (constant only).
+  ASSERT_EQ(rows.size(), 12u);
   for (const SweepRow& r : rows) {
     const double bound = r.method == "full" ? 1e-9 : 1e-5;
     EXPECT_LT(r.error_l2_gathered, bound) << r.method << " " << r.parameter << " " << r.value;

@@ -6,7 +6,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 COLORS = {"full": "#d62728", "substructure": "#1f77b4", "hierarchical": "#2ca02c",
-          "hierarchical_linear": "#9467bd"}
+          "hierarchical_linear": "#9467bd", "full_linear": "#ff7f0e", "substructure_linear": "#17becf"}
 
 
 def save(fig, path):

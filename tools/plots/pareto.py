@@ -1,6 +1,6 @@
 """Error against time, log-log, one curve per method and parameter: `pareto.py SWEEP.csv OUT.png TITLE`.
 
-Left: the error of the element radiosity (the unknowns: constant, or linear for hierarchical_linear); then, when the sweep measured them,
+Left: the error of the element radiosity (the unknowns: constant, or linear for the *_linear methods); then, when the sweep measured them,
 the error of the displayed field (column error_l2_smooth: vertex radiosity interpolated linearly) and
 of the run's own final gather at the samples (column error_l2_gathered, against the time of the solve
 and the gather, gather_seconds)."""
@@ -17,7 +17,7 @@ if rows and "error_l2_gathered" in rows[0] and any(not math.isnan(r["error_l2_ga
     fields.append(("error_l2_gathered", "final gather of the run (solve + gather time)", True))
 fig, axes = plt.subplots(1, len(fields), figsize=(7 * len(fields), 5), squeeze=False, sharey=True)
 for ax, (column, name, gathered) in zip(axes[0], fields):
-    for method in ("full", "substructure", "hierarchical", "hierarchical_linear"):
+    for method in ("full", "substructure", "hierarchical", "full_linear", "substructure_linear", "hierarchical_linear"):
         for parameter, marker in (("max_area", "o"), ("patch_area", "s"), ("feps", "o"), ("aeps", "^")):
             pts = sorted((r["seconds"] + (r["gather_seconds"] if gathered else 0.0), r[column]) for r in rows
                          if r["method"] == method and r["parameter"] == parameter and r[column] > 0)

@@ -59,25 +59,32 @@ std::vector<std::pair<Method, SweepSetting>> sweep_settings(const Scene& scene, 
   const auto add = [&](Method m, std::string parameter, double value, SolveOptions o) {
     settings.push_back({m, SweepSetting{std::move(parameter), value, std::move(o)}});
   };
-  for (double n : options.element_counts) {
-    SolveOptions o = base_options(Method::kFull, options);
-    o.max_area = area / n;
-    o.linear_solver = options.full_linear_solver;
-    add(Method::kFull, "max_area", o.max_area, o);
-  }
-  for (double n : options.element_counts) {
-    SolveOptions o = base_options(Method::kSubstructure, options);
-    o.max_area = area / n;
-    add(Method::kSubstructure, "max_area", o.max_area, o);
-  }
+  // Every method once per basis; the full matrix's linear elements iterate by Jacobi (solve.h).
+  for (const Basis basis : options.bases)
+    for (double n : options.element_counts) {
+      SolveOptions o = base_options(Method::kFull, options);
+      o.max_area = area / n;
+      o.basis = basis;
+      o.linear_solver = basis == Basis::kLinear ? LinearSolver::kJacobi : options.full_linear_solver;
+      add(Method::kFull, "max_area", o.max_area, o);
+    }
   std::vector<double> counts = options.element_counts;
   std::sort(counts.begin(), counts.end());
   const double median_count = counts[counts.size() / 2];
-  for (double p : options.patch_counts) {
-    SolveOptions o = base_options(Method::kSubstructure, options);
-    o.max_area = area / median_count;
-    o.patch_area = area / p;
-    add(Method::kSubstructure, "patch_area", o.patch_area, o);
+  for (const Basis basis : options.bases) {
+    for (double n : options.element_counts) {
+      SolveOptions o = base_options(Method::kSubstructure, options);
+      o.max_area = area / n;
+      o.basis = basis;
+      add(Method::kSubstructure, "max_area", o.max_area, o);
+    }
+    for (double p : options.patch_counts) {
+      SolveOptions o = base_options(Method::kSubstructure, options);
+      o.max_area = area / median_count;
+      o.patch_area = area / p;
+      o.basis = basis;
+      add(Method::kSubstructure, "patch_area", o.patch_area, o);
+    }
   }
   for (const Push push : options.pushes)
     for (const Basis basis : options.bases) {

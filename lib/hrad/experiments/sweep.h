@@ -89,9 +89,9 @@ struct SweepOptions {
   /// The hierarchical runs' link operators: each feps and aeps setting runs once per push; rows of
   /// Push::kLeaf are labelled method "hierarchical_leaf".
   std::vector<Push> pushes = {Push::kHsa};
-  /// The hierarchical runs' bases: each feps and aeps setting with Push::kHsa runs once per basis
-  /// (the full matrix and substructuring offer only the constant basis); rows of Basis::kLinear are
-  /// labelled method "hierarchical_linear".
+  /// The bases: every setting of the full matrix and substructuring, and each hierarchical feps and
+  /// aeps setting with Push::kHsa, runs once per basis; rows of Basis::kLinear are labelled
+  /// "full_linear", "substructure_linear" and "hierarchical_linear".
   std::vector<Basis> bases = {Basis::kConstant, Basis::kLinear};
   int samples_per_patch = 256;
   /// Visibility point pairs per partly visible pair in every run (0 = the solvers' default); the

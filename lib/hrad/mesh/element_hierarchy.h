@@ -74,6 +74,14 @@ class ElementHierarchy {
   /// The same for the tree below `id` only.
   void subdivide_uniform(NodeId id, double max_area);
 
+  /// Balances the leaves as a restricted quadtree (Von Herzen & Barr 1987; Baum, Mann, Smith &
+  /// Winget 1991 sec. 4): splits every leaf one of whose edges holds two or more corners of other
+  /// leaves in its plane group (a neighbour at least two levels finer), until none does. Then each
+  /// leaf edge holds at most one T-vertex, so the output mesh has no long T-edges. Splits across
+  /// patches too (coplanar patches of one material meeting at T-junctions). Returns the splits.
+  /// `weld_tolerance` as for to_solution().
+  std::size_t balance(double weld_tolerance = 0.0);
+
   /// Sets each interior node's radiosity to the area average of its children, bottom-up
   /// (the "pull" of push-pull; Hanrahan, Salzman & Aupperle 1991, sec. 4).
   void pull_radiosity();

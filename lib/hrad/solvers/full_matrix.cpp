@@ -15,6 +15,8 @@
 #include "hrad/core/error.h"
 #include "hrad/core/progress.h"
 #include "hrad/solvers/dense_links.h"
+#include "hrad/solvers/field_links.h"
+#include "hrad/solvers/field_solve.h"
 #include "hrad/solvers/iteration.h"
 #include "hrad/solvers/push_pull.h"
 #include "hrad/solvers/solver_context.h"
@@ -49,6 +51,27 @@ void fill_matrix(SolverContext& ctx, const ElementHierarchy& h, const std::vecto
   progress.finish();
 }
 
+// Linear elements: both directions of every pair's field links from one evaluation of its points.
+void fill_fields(SolverContext& ctx, const ElementHierarchy& h, FieldLinks& links) {
+  const std::vector<NodeId>& leaves = links.receivers();
+  const int n = static_cast<int>(leaves.size());
+  const FormFactorEvaluator& evaluator = ctx.evaluator();
+  const int rays = field_rays_per_point(ctx.options().visibility_samples);
+  ProgressReporter progress("full: form factors", static_cast<std::uint64_t>(n) * static_cast<std::uint64_t>(n - 1) / 2,
+                            "pairs", ctx.options().progress, ctx.options().progress_interval_seconds);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 1), [&](const tbb::blocked_range<int>& range) {
+    for (int i = range.begin(); i < range.end(); ++i) {
+      const ElementNode& a = h.node(leaves[static_cast<std::size_t>(i)]);
+      for (int j = i + 1; j < n; ++j)
+        pair_fields(evaluator, a, h.node(leaves[static_cast<std::size_t>(j)]), rays,
+                    &links.entry(static_cast<std::size_t>(i), static_cast<std::size_t>(j)),
+                    &links.entry(static_cast<std::size_t>(j), static_cast<std::size_t>(i)));
+      progress.advance(static_cast<std::uint64_t>(n - 1 - i));
+    }
+  });
+  progress.finish();
+}
+
 }  // namespace
 
 SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, Solution* out) {
@@ -60,16 +83,22 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
   // The dense F and, for LU, one system matrix at a time: refuse up front what cannot fit rather
   // than fail in the allocator halfway through. Elements before meshing: a patch of area A splits
   // into quarters until they are <= max_area (about: quads that are not parallelograms split unevenly).
+  // Linear elements hold a field entry per ordered pair instead (field_links.h).
+  const bool linear = options.basis == Basis::kLinear;
   const double estimate = uniform_elements(scene, max_area);
-  const double needed = 2.0 * estimate * estimate * sizeof(double);
+  const double needed = estimate * estimate * (linear ? sizeof(FieldEntry) : 2.0 * sizeof(double));
   const double physical = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
   if (physical > 0.0 && needed > 0.8 * physical)
-    throw Error(fmt::format("full matrix: about {:.0f} elements need two dense {:.0f} x {:.0f} matrices ({:.1f} GB) and "
+    throw Error(fmt::format("full matrix: about {:.0f} elements need {} ({:.1f} GB) and "
                             "this machine has {:.1f} GB: raise --max-area (now {:g}) or use --method hierarchical",
-                            estimate, estimate, estimate, needed / 1e9, physical / 1e9, max_area));
+                            estimate,
+                            linear ? fmt::format("{} bytes of field links per ordered pair", sizeof(FieldEntry))
+                                   : fmt::format("two dense {:.0f} x {:.0f} matrices", estimate, estimate),
+                            needed / 1e9, physical / 1e9, max_area));
   {
     auto phase = ctx.phase("mesh");
     h.subdivide_uniform(max_area);
+    if (options.balance) ctx.summary().figures["balance_splits"] = static_cast<double>(h.balance());
   }
   const std::vector<NodeId> leaves = h.all_leaves();
   const int n = static_cast<int>(leaves.size());
@@ -79,6 +108,14 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
     return ctx.finish(h, 0, out);
   }
   ctx.progress(fmt::format("full: {} elements, {} form factors", n, factors));
+  if (linear) {
+    FieldLinks fields(leaves, leaves);
+    {
+      auto phase = ctx.phase("form_factors");
+      fill_fields(ctx, h, fields);
+    }
+    return solve_linear_field(ctx, h, fields, factors, out);
+  }
 
   DenseLinks links(leaves, leaves);
   {

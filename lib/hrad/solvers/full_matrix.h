@@ -1,7 +1,9 @@
 // Classical radiosity (Goral, Torrance, Greenberg & Battaile 1984; Cohen & Greenberg 1985): every
 // patch meshed uniformly into elements of area <= max_area, the n x n form-factor matrix filled in
 // parallel (each unordered pair evaluated once, both directions from that one evaluation), and
-// (I - rho F) B = E solved per channel by LU (the reference), Jacobi or Gauss-Seidel.
+// (I - rho F) B = E solved per channel by LU (the reference), Jacobi or Gauss-Seidel. With linear
+// elements (SolveOptions::basis) the pairs' field links (field_links.h) replace F and the corner
+// values are iterated by Jacobi (field_solve.h).
 #pragma once
 
 #include "hrad/core/scene.h"

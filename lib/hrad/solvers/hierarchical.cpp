@@ -87,6 +87,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   figures["aeps"] = t.aeps;
   if (!ctx.effects().bounces) {
     ctx.set_direct("nothing reflects: B = E, no links needed");
+    if (options.balance) h.balance();
     return ctx.finish(h, 0, out);
   }
   std::unique_ptr<ClusterTree> tree;
@@ -129,7 +130,15 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     }
     ++passes;
     candidates += refined.candidates;
-    const bool changed = refined.splits > 0 || refined.links.size() != links.size();
+    // A separate pass after refinement: links stay where refinement put them, and the HSA push
+    // carries them down to the new leaves.
+    std::size_t balanced = 0;
+    if (options.balance) {
+      auto phase = ctx.phase("balance");
+      balanced = h.balance();
+      figures["balance_splits"] += static_cast<double>(balanced);
+    }
+    const bool changed = refined.splits > 0 || balanced > 0 || refined.links.size() != links.size();
     links = std::move(refined.links);
     {
       auto phase = ctx.phase("links");

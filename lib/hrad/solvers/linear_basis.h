@@ -24,8 +24,8 @@
 // Links carry the factor's shape over both ends (refinement_oracle.h: the point factors at the
 // receiver's points, exact point-to-polygon factors from the same evaluator, and the source's
 // shape towards the receiver), so the hierarchical solver needs no new factors. The full matrix
-// and substructuring store one element-to-element (or element-to-patch) factor per pair and
-// deliver a constant field: they refuse the linear basis (solve.cpp validate_options()).
+// and substructuring gather through field links of the same kind, with each receiver point's exact
+// factor (field_links.h).
 #pragma once
 
 #include <array>

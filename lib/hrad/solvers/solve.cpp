@@ -63,9 +63,11 @@ void validate_options(const SolveOptions& o) {
     throw Error(fmt::format("--push: unknown operator {}", static_cast<int>(o.push)));
   if (o.basis != Basis::kConstant && o.basis != Basis::kLinear)
     throw Error(fmt::format("--basis: unknown basis {}", static_cast<int>(o.basis)));
-  if (o.basis == Basis::kLinear && o.method != Method::kHierarchical)
-    throw Error(fmt::format("--basis linear is offered by --method hierarchical only, not {}", to_string(o.method)));
-  if (o.basis == Basis::kLinear && o.push != Push::kHsa)
+  if (o.basis == Basis::kLinear && o.method == Method::kFull && o.linear_solver != LinearSolver::kJacobi)
+    throw Error(fmt::format("--basis linear with --method full iterates the corner values by Jacobi (--linear-solver "
+                            "jacobi), not {}",
+                            to_string(o.linear_solver)));
+  if (o.basis == Basis::kLinear && o.method == Method::kHierarchical && o.push != Push::kHsa)
     throw Error("--basis linear needs --push hsa (the leaf operator gathers one value per leaf)");
   if (o.threads < 0) throw Error(fmt::format("--threads must be >= 0 (0 = all cores), got {}", o.threads));
 }

@@ -47,7 +47,9 @@ enum class Push {
 /// The radiosity over each leaf element (linear_basis.h).
 enum class Basis {
   kConstant,  ///< one value per element (the classical element)
-  kLinear,    ///< linear on a triangle, bilinear on a quad's map: the L2 projection of E + rho H (hierarchical, --push hsa)
+  /// Linear on a triangle, bilinear on a quad's map: the L2 projection of E + rho H (hierarchical
+  /// with Push::kHsa; full matrix with LinearSolver::kJacobi; substructuring).
+  kLinear,
 };
 
 /// Clustering::kAuto turns clustering on from this many patches (below it the k^2 initial pairs
@@ -94,7 +96,10 @@ struct SolveOptions {
   Clustering clustering = Clustering::kAuto;
   /// Hierarchical: the link operator (see Push).
   Push push = Push::kHsa;
-  /// The radiosity basis on the leaves (see Basis); kLinear needs Method::kHierarchical and Push::kHsa.
+  /// Balance the leaves after meshing or refinement (ElementHierarchy::balance(): at most one level
+  /// between edge neighbours), so the output mesh has no long T-edges.
+  bool balance = false;
+  /// The radiosity basis on the leaves (see Basis).
   Basis basis = Basis::kConstant;
   /// Worker threads for the parallel phases; 0 = TBB's default (all cores).
   int threads = 0;

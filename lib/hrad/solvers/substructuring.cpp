@@ -10,6 +10,8 @@
 
 #include "hrad/core/progress.h"
 #include "hrad/solvers/dense_links.h"
+#include "hrad/solvers/field_links.h"
+#include "hrad/solvers/field_solve.h"
 #include "hrad/solvers/iteration.h"
 #include "hrad/solvers/push_pull.h"
 #include "hrad/solvers/solver_context.h"
@@ -34,10 +36,9 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
     auto phase = ctx.phase("mesh");
     h.subdivide_uniform(patch_area);
     patches = h.all_leaves();
-    for (NodeId p : patches) {
-      h.subdivide_uniform(p, max_area);
-      elements_of.push_back(h.leaves_below(p));
-    }
+    for (NodeId p : patches) h.subdivide_uniform(p, max_area);
+    if (options.balance) figures["balance_splits"] = static_cast<double>(h.balance());
+    for (NodeId p : patches) elements_of.push_back(h.leaves_below(p));
   }
   const int big_n = static_cast<int>(patches.size());
   std::vector<NodeId> elements;  // in patch order
@@ -56,6 +57,31 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
   }
   ctx.progress(fmt::format("substructure: {} elements receive from {} patches ({} form factors)", n, big_n, factors));
 
+  if (options.basis == Basis::kLinear) {
+    // Linear elements: element i gathers a field from each patch P (field_links.h), reading P's
+    // radiosity moments, which push-pull pulls up from P's elements.
+    FieldLinks fields(elements, patches);
+    {
+      auto phase = ctx.phase("form_factors");
+      const FormFactorEvaluator& evaluator = ctx.evaluator();
+      const int rays = field_rays_per_point(options.visibility_samples);
+      ProgressReporter progress("substructure: form factors", static_cast<std::uint64_t>(factors), "factors",
+                                options.progress, options.progress_interval_seconds);
+      tbb::parallel_for(tbb::blocked_range<int>(0, n, 4), [&](const tbb::blocked_range<int>& range) {
+        FieldEntry unused;
+        for (int i = range.begin(); i < range.end(); ++i) {
+          const ElementNode& a = h.node(elements[static_cast<std::size_t>(i)]);
+          for (int p = 0; p < big_n; ++p)
+            if (p != element_patch[static_cast<std::size_t>(i)])
+              pair_fields(evaluator, a, h.node(patches[static_cast<std::size_t>(p)]), rays,
+                          &fields.entry(static_cast<std::size_t>(i), static_cast<std::size_t>(p)), &unused);
+          progress.advance(static_cast<std::uint64_t>(big_n));
+        }
+      });
+      progress.finish();
+    }
+    return solve_linear_field(ctx, h, fields, factors, out);
+  }
   // F(i -> P) for element i and shooting patch P: row i of an n x N matrix; rows are independent.
   DenseLinks links(elements, patches);
   {

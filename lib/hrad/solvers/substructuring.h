@@ -2,6 +2,8 @@
 // realistic image synthesis"): coarse patches shoot, fine elements receive. Element i gathers
 // B_i = E_i + rho_i * sum_P F(i -> P) B_P over the n x N element-to-patch factors, and a patch's
 // radiosity is the area average of its elements; iterated (Gauss-Seidel over patches) to the tolerance.
+// With linear elements each element gathers a field from each patch (field_links.h), reading the
+// patch's radiosity moments pulled up from its elements.
 #pragma once
 
 #include "hrad/core/scene.h"

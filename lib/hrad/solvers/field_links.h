@@ -1,0 +1,69 @@
+// Dense links that carry fields, for linear elements (linear_basis.h) in the full matrix and
+// substructuring: each (receiver, source) entry holds the factor from each of the receiver's
+// simpson_points() to the source, F(dA_x -> source) V(x, source) by Lambert's exact point-to-polygon
+// formula (FormFactorEvaluator::point_factor(), its one-sided limit on the receiver's boundary), and
+// the source's shape towards the receiver, F(dA_y -> receiver) V(y, receiver) at the source's points,
+// over which the source's radiosity moments are weighed (link_operator.h NodeField::radiosity_moments).
+// The kernel over the pair is thus the separable K(x, y) ~ F(x -> source) w(y), as for the hierarchical
+// solver's shaped links (refinement_oracle.h), with the receiver's side exact at every point.
+//
+// Why exact point factors rather than a pair mean spread over a shape: at every receiver point the
+// factors to sources that tile a closed room sum to 1 (Lambert's formula is exact per point), so a
+// uniform room's field is E / (1 - rho) at every point to rounding; and the source's weights are
+// normalised so that a uniform source sends its radiosity. What the quadrature leaves is reciprocity,
+// which holds to the points' quadrature error.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "hrad/core/huge_page_allocator.h"
+#include "hrad/mesh/element_hierarchy.h"
+#include "hrad/solvers/form_factor_evaluator.h"
+#include "hrad/solvers/link_operator.h"
+
+namespace hrad {
+
+/// One direction of a pair: what `receiver` gathers from `source`.
+struct FieldEntry {
+  std::array<double, 9> factor{};  ///< F(x_k -> source) V at the receiver's points (link_operator.h PointValues)
+  /// The radiosity the source sends is sum_m weight_m m_m over its moments: its points' factors
+  /// towards the receiver over their integral, so that a uniform radiosity B sends B.
+  std::array<double, 9> weight{};
+};
+
+/// Both directions of the pair (a, b): a's entry gathering from b and b's from a. Zero factors for
+/// coplanar, facing-away and hidden pairs. A partly visible pair's points take their visible
+/// fractions from `rays` rays each towards the other side (deterministic in the pair's geometry);
+/// points on a boundary cast them from just inside the element. Thread-safe.
+void pair_fields(const FormFactorEvaluator& evaluator, const ElementNode& a, const ElementNode& b, int rays,
+                 FieldEntry* a_from_b, FieldEntry* b_from_a);
+
+class FieldLinks final : public LinkOperator {
+ public:
+  /// Entries receivers x sources, zero until filled through entry(). Huge pages (BigVector).
+  FieldLinks(std::vector<NodeId> receivers, std::vector<NodeId> sources);
+
+  FieldEntry& entry(std::size_t receiver, std::size_t source) { return entries_[receiver * sources_.size() + source]; }
+  const std::vector<NodeId>& receivers() const { return receivers_; }
+  const std::vector<NodeId>& sources() const { return sources_; }
+
+  /// Each receiver's irradiance at its points: sum over sources of factor_k times the radiosity the
+  /// source sends. Parallel over receivers, the same bits at any thread count.
+  void gather(NodeField& field) const override;
+  /// Eighteen per entry, as for the hierarchical solver's shaped links (hsa_links.h).
+  std::uint64_t terms() const override { return 18 * entries_.size(); }
+  std::uint64_t bytes() const override { return entries_.size() * sizeof(FieldEntry); }
+
+ private:
+  std::vector<NodeId> receivers_, sources_;
+  BigVector<FieldEntry> entries_;
+};
+
+/// Rays per point of a partly visible pair for `visibility_samples` point pairs per pair (the
+/// constant elements' budget): a quarter of it, at least 4, so that a pair's 18 points cost a few
+/// times what one pair's fraction costs.
+inline int field_rays_per_point(int visibility_samples) { return visibility_samples / 4 > 4 ? visibility_samples / 4 : 4; }
+
+}  // namespace hrad
