@@ -8,6 +8,7 @@
       both with plain -O2 (rpkCpp ships -O3 -ffast-math; its per-iteration print of the whole element hierarchy is
       kept behind RPK_PRINT_HIERARCHY, since printing megabytes is not solving). Nothing else in them changes.
   scripts/peers.py run PEERS [--hrad build/bin/hrad] [--repeats 3] [--work DIR] [--scenes a,b]
+                             [--reuse-references | --reuse-rulers]
       For each scene: a converged hrad reference (and a check of it at a quarter of its elements), then every
       setting of every program run in turn, repeats times, pinned to core 0 (taskset), timed by CPU seconds
       (user + system, from wait4), each scored per input polygon against the reference. Prints one table
@@ -326,11 +327,14 @@ def run(args):
         ref_path = os.path.join(args.work, scene + '.reference.json')
         check_path = os.path.join(args.work, scene + '.reference_check.json')
         ruler_path = os.path.join(args.work, scene + '.ruler.csv')
-        if not (args.reuse_references and all(os.path.exists(f) for f in (ref_path, check_path, ruler_path))):
-            print('%s: reference (hrad, aeps total/%g and total/%g, all cores) and the Monte Carlo ruler ... %.0f s so far'
+        if not (args.reuse_references and os.path.exists(ref_path) and os.path.exists(check_path)):
+            print('%s: reference (hrad, aeps total/%g and total/%g, all cores) ... %.0f s so far'
                   % (scene, 1 / REFERENCE_AEPS, 1 / (4 * REFERENCE_AEPS), time.time() - started), file=sys.stderr)
             for fraction, path in ((REFERENCE_AEPS, ref_path), (4 * REFERENCE_AEPS, check_path)):
                 subprocess.run(hrad_cmd(hrad, obj, fraction, area, path, 0), check=True, stdout=subprocess.DEVNULL)
+        if not ((args.reuse_references or args.reuse_rulers) and os.path.exists(ruler_path)):
+            print('%s: the Monte Carlo ruler (%d points per polygon, all cores) ... %.0f s so far'
+                  % (scene, RULER_SAMPLES, time.time() - started), file=sys.stderr)
             subprocess.run([hrad, 'reference', obj, '--faces', '--samples', str(RULER_SAMPLES), '--quiet', '--out',
                             ruler_path], check=True, stdout=subprocess.DEVNULL)
         reference = read_answer(ref_path)
@@ -402,6 +406,9 @@ def main():
     r.add_argument('--work', default='/tmp/hrad-peers')
     r.add_argument('--reuse-references', action='store_true',
                    help='keep the references and rulers an earlier run left in WORK (when hrad has not changed since)')
+    r.add_argument('--reuse-rulers', action='store_true',
+                   help="keep the Monte Carlo rulers an earlier run left in WORK (path tracing: they do not depend on "
+                        "hrad's solvers)")
     r.add_argument('--scenes', help='comma-separated subset of ' + ','.join(dict.fromkeys(s[0] for s in SETTINGS)))
     args = parser.parse_args()
     build(args) if args.command == 'build' else run(args)
