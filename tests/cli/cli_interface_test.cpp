@@ -74,6 +74,34 @@ TEST(CliSolve, ReportHoldsTheInterfaceFieldsAndFullMatrixCountsNSquared) {
   EXPECT_EQ(dir.entries(), 2u);  // the two outputs and no temporary file
 }
 
+TEST(CliSolve, LinearElementsOfTheFullMatrixIterateByDefaultAndKeepThePatchMeans) {
+  // --basis linear with --method full and no --linear-solver iterates by Jacobi; the receiver's mean
+  // is the constant elements' up to the two quadratures (1 x 1 elements 20 apart: far below 1e-4),
+  // since the projection keeps each element's mean. Asking for LU with it is one line naming the option.
+  TempDir dir;
+  double mean[2] = {0.0, 0.0};
+  for (const int linear : {0, 1}) {
+    const std::string report = dir.path(linear ? "l.json" : "c.json");
+    const RunResult r = run_hrad(std::string("solve notebooks_data/scenes/two_far_surfaces.obj --method full --max-area 1 "
+                                             "--tolerance 1e-10 --quiet --basis ") +
+                                     (linear ? "linear" : "constant") + " --report " + report,
+                                 dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(slurp(report));
+    EXPECT_EQ(j.at("options").at("basis"), linear ? "linear" : "constant");
+    EXPECT_EQ(j.at("options").at("linear_solver"), linear ? "jacobi" : "lu");
+    EXPECT_EQ(j.at("termination"), linear ? "converged" : "direct");
+    EXPECT_FALSE(j.at("options").at("balance").get<bool>());
+    mean[linear] = j.at("patches")[1].at("radiosity")[0].get<double>();
+  }
+  EXPECT_GT(mean[0], 0.0);
+  EXPECT_NEAR(mean[1], mean[0], 1e-4 * mean[0]);
+  const RunResult lu = run_hrad("solve notebooks_data/scenes/two_far_surfaces.obj --method full --basis linear "
+                                "--linear-solver lu --quiet", dir);
+  EXPECT_NE(lu.exit_code, 0);
+  EXPECT_NE(lu.err.find("--linear-solver"), std::string::npos) << lu.err;
+}
+
 TEST(CliSolve, SameBytesRunAfterRunAndWhateverTheThreadCount) {
   TempDir dir;
   const std::string base = "solve notebooks_data/scenes/cornell_box.obj --quiet --method ";

@@ -33,6 +33,7 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
                   {"clustering", std::string(to_string(used.clustering))},
                   {"push", std::string(to_string(used.push))},
                   {"basis", std::string(to_string(used.basis))},
+                  {"balance", used.balance},
                   {"threads", used.threads}};
   j["termination"] = std::string(to_string(summary.termination));
   j["status"] = std::string(to_string(summary.termination));

@@ -14,7 +14,7 @@ namespace hrad {
 
 /// The report of one solve:
 ///   scene, method, options {max_area, patch_area, feps, bfeps, aeps, tolerance, max_iterations,
-///     linear_solver, effects, kernel, visibility_samples, clustering, push, threads}: as the solve
+///     linear_solver, effects, kernel, visibility_samples, clustering, push, basis, balance, threads}: as the solve
 ///     used them (SolveSummary::used: automatic values filled in, the method's kernel),
 ///   termination ("converged" | "max_iterations" | "direct" | "failed"), status (the same), message,
 ///   iterations, elements, links, patch_count (Scene::patches), form_factor_evaluations, visibility_queries,
