@@ -129,9 +129,10 @@ void add_figures_command(CLI::App& app) {
       const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe");
       const std::filesystem::path beside = exe.parent_path().parent_path().parent_path() / "notebooks_data" / "scenes";
       if (!std::filesystem::is_directory(beside))
-        throw Error(fmt::format("--scenes: the bundled scenes are neither in ./notebooks_data/scenes nor in {}: give "
-                                "--scenes DIR",
-                                beside.string()));
+        throw Error(
+            fmt::format("--scenes: the bundled scenes are neither in ./notebooks_data/scenes nor in {}: give "
+                        "--scenes DIR",
+                        beside.string()));
       args->scenes = beside.string();
     }
     if (args->threads < 0) throw Error(fmt::format("--threads must be >= 0, got {}", args->threads));
@@ -172,7 +173,8 @@ void add_figures_command(CLI::App& app) {
       run_plot("fig_cost.py", {dir + "/fig1_cost.csv", dir + "/fig1_cost.png", dir + "/fig1_cost_fit.json"});
       for (const auto& [method, measures] : fits["methods"].items())
         for (const auto& [measure, fit] : measures.items())
-          if (!fit.is_null()) headlines["fig1_slope"][method][measure] = {{"b", fit["b"]}, {"b_stderr", fit["b_stderr"]}};
+          if (!fit.is_null())
+            headlines["fig1_slope"][method][measure] = {{"b", fit["b"]}, {"b_stderr", fit["b_stderr"]}};
     }
 
     if (only.count(2)) {
@@ -199,7 +201,9 @@ void add_figures_command(CLI::App& app) {
       run_plot("fig_edge.py", {dir + "/fig2_edge.csv", dir + "/fig2_edge.png", dir + "/fig2_edge_mesh.png",
                                fmt::format("{} elements, {} links{}", fig.summary.elements, fig.summary.links,
                                            fig.solution.link_segments.empty() ? " (links not recorded)" : "")});
-      headlines["fig2"] = {{"elements", fig.summary.elements}, {"links", fig.summary.links}, {"aeps", o.aeps},
+      headlines["fig2"] = {{"elements", fig.summary.elements},
+                           {"links", fig.summary.links},
+                           {"aeps", o.aeps},
                            {"links_drawn", !fig.solution.link_segments.empty()}};
     }
 
@@ -211,16 +215,17 @@ void add_figures_command(CLI::App& app) {
       write_text(dir + "/fig3_far.csv", far_csv(rows));
       run_plot("fig_far.py", {dir + "/fig3_far.csv", dir + "/fig3_far.png"});
       for (const FarRow& r : rows)
-        if (r.k == ks.back()) headlines["fig3_at_largest_k"][r.method] = {{"k", r.k}, {"cross_pairs", r.cross_pairs},
-                                                                         {"cross_factors", r.cross_factors}};
+        if (r.k == ks.back())
+          headlines["fig3_at_largest_k"][r.method] = {
+              {"k", r.k}, {"cross_pairs", r.cross_pairs}, {"cross_factors", r.cross_factors}};
     }
 
     if (only.count(4)) {
       const Lap lap(&figure_seconds, "fig4");
-      const std::vector<int> ns = quick ? std::vector<int>{64, 256, 1024}
-                                        : std::vector<int>{100, 300, 1000, 3000, 10000, 20000};
-      const std::vector<double> thetas = quick ? std::vector<double>{0.0, 0.5, 1.0}
-                                               : std::vector<double>{0.0, 0.3, 0.5, 0.7, 1.0};
+      const std::vector<int> ns =
+          quick ? std::vector<int>{64, 256, 1024} : std::vector<int>{100, 300, 1000, 3000, 10000, 20000};
+      const std::vector<double> thetas =
+          quick ? std::vector<double>{0.0, 0.5, 1.0} : std::vector<double>{0.0, 0.3, 0.5, 0.7, 1.0};
       progress("figure 4: Barnes-Hut");
       const auto samples = barnes_hut_sweep(ns, thetas, 1, quick ? 1024 : 3000);
       write_text(dir + "/fig4_nbody.csv", barnes_hut_csv(samples));
@@ -260,14 +265,16 @@ void add_figures_command(CLI::App& app) {
         write_png(fmt::format("{}/fig6_{}_error.png", dir, fig.runs[i].method), images.errors[i]);
       }
       write_text(dir + "/fig6_equal_time.csv", equal_time_csv(fig));
-      run_plot("fig_equal_time.py", {dir + "/fig6_equal_time.csv", dir + "/fig6_equal_time.png",
-                                     fmt::format("{:.3g}", images.error_hi)});
+      run_plot("fig_equal_time.py",
+               {dir + "/fig6_equal_time.csv", dir + "/fig6_equal_time.png", fmt::format("{:.3g}", images.error_hi)});
       headlines["fig6_budget_seconds"] = fig.budget_seconds;
       headlines["fig6_reference"] = {{"elements", fig.reference_summary.elements},
                                      {"seconds", fig.reference_summary.total_seconds}};
       for (const auto& r : fig.runs)
-        headlines["fig6"][r.method] = {{"elements", r.summary.elements}, {"seconds", r.summary.total_seconds},
-                                       {"error_l2", r.error.relative_l2}, {"error_linf", r.error.relative_linf}};
+        headlines["fig6"][r.method] = {{"elements", r.summary.elements},
+                                       {"seconds", r.summary.total_seconds},
+                                       {"error_l2", r.error.relative_l2},
+                                       {"error_linf", r.error.relative_linf}};
     }
 
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

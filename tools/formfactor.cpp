@@ -32,9 +32,11 @@
 namespace hrad::cli {
 
 void add_formfactor_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("formfactor", "Form factors of polygon pairs and point-polygon pairs (JSON in, JSON out)");
+  auto* cmd =
+      app.add_subcommand("formfactor", "Form factors of polygon pairs and point-polygon pairs (JSON in, JSON out)");
   auto path = std::make_shared<std::string>();
-  cmd->add_option("--json", *path, "Input file: {\"pairs\": [{\"name\", \"from\" | \"from_point\" + \"from_normal\", \"to\"}]}")
+  cmd->add_option("--json", *path,
+                  "Input file: {\"pairs\": [{\"name\", \"from\" | \"from_point\" + \"from_normal\", \"to\"}]}")
       ->required();
   cmd->callback([path] {
     const std::vector<FormFactorQuery> queries = read_formfactor_json(read_input_file(*path), *path);

@@ -16,8 +16,8 @@
 
 #include "commands.h"
 #include "hrad/core/scene_checks.h"
-#include "hrad/io/scene_reader.h"
 #include "hrad/io/scene_json.h"
+#include "hrad/io/scene_reader.h"
 
 namespace hrad::cli {
 

@@ -1,9 +1,9 @@
 #include "plot.h"
 
-#include <cstdlib>
-#include <filesystem>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <cstdlib>
+#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -30,7 +30,8 @@ void run_plot(const std::string& script, const std::vector<std::string>& args) {
   argv.push_back(nullptr);
   pid_t pid = 0;
   if (posix_spawn(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ) != 0)
-    throw Error(fmt::format("{}: cannot run (plots need Debian's python3 with matplotlib: scripts/install_deps.sh)", python));
+    throw Error(
+        fmt::format("{}: cannot run (plots need Debian's python3 with matplotlib: scripts/install_deps.sh)", python));
   set_output_child(pid);
   int status = 0;
   waitpid(pid, &status, 0);

@@ -127,8 +127,7 @@ void add_probe_command(CLI::App& app) {
   cmd->add_option("--out", args->out, "Write the results (CSV) here")->required();
   cmd->add_option("--gather-tolerance", args->gather_tolerance,
                   "Barnes-Hut tolerance of the gather, relative to the mean radiosity (default 1e-3)");
-  cmd->add_option("--visibility-samples", args->visibility_samples,
-                  "Points per partly visible leaf (default 64)");
+  cmd->add_option("--visibility-samples", args->visibility_samples, "Points per partly visible leaf (default 64)");
   cmd->add_flag("--exact-visibility", args->exact_visibility, "Exact visible regions instead of samples");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--seed", args->seed, "Seed of the visibility samples (default 1)");

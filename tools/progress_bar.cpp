@@ -1,8 +1,8 @@
 #include "progress_bar.h"
 
+#include <unistd.h>
 #include <cstdio>
 #include <string>
-#include <unistd.h>
 
 namespace hrad::cli {
 

@@ -53,9 +53,10 @@ std::string csv_cell(const std::string& text) {
 std::string rgb_cells(const Rgb& c) { return fmt::format("{},{},{}", c[0], c[1], c[2]); }
 
 void print_summary(const std::string& what, const ReferenceSummary& s) {
-  std::cout << fmt::format("{}: {} paths, {} rays ({} closest-hit, {} shadow) in {:.3f} s (BVH {:.3f} s), {:.3g} rays/s\n",
-                           what, s.paths, s.rays(), s.closest_hit_rays, s.shadow_rays, s.total_seconds, s.build_seconds,
-                           s.trace_seconds > 0.0 ? static_cast<double>(s.rays()) / s.trace_seconds : 0.0);
+  std::cout << fmt::format(
+      "{}: {} paths, {} rays ({} closest-hit, {} shadow) in {:.3f} s (BVH {:.3f} s), {:.3g} rays/s\n", what, s.paths,
+      s.rays(), s.closest_hit_rays, s.shadow_rays, s.total_seconds, s.build_seconds,
+      s.trace_seconds > 0.0 ? static_cast<double>(s.rays()) / s.trace_seconds : 0.0);
 }
 
 }  // namespace

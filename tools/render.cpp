@@ -170,9 +170,10 @@ void add_render_command(CLI::App& app) {
       const double per_pixel = 115.0 + (args->final_gather ? 88.0 * args->samples_per_pixel : 0.0);
       const double bytes = per_pixel * args->width * args->height, available = available_memory_bytes();
       if (available > 0.0 && bytes > 0.8 * available)
-        throw Error(fmt::format("--width/--height: a {} x {} image needs about {} and this process may use {}: "
-                                "render smaller",
-                                args->width, args->height, format_bytes(bytes), format_bytes(available)));
+        throw Error(
+            fmt::format("--width/--height: a {} x {} image needs about {} and this process may use {}: "
+                        "render smaller",
+                        args->width, args->height, format_bytes(bytes), format_bytes(available)));
     }
     LeafGatherOptions gather_options;
     gather_options.tolerance = args->gather_tolerance;
@@ -208,7 +209,8 @@ void add_render_command(CLI::App& app) {
     OutputFiles outputs;
     outputs.declare("--out", args->out);
     if (!args->exr.empty()) outputs.declare("--exr", args->exr);
-    outputs.check_inputs({{"the solution", args->solution}, {"--reference", args->reference}, {"--scene", args->scene}});
+    outputs.check_inputs(
+        {{"the solution", args->solution}, {"--reference", args->reference}, {"--scene", args->scene}});
     const Solution solution = read_solution_ply(args->solution);
     RenderOptions options;
     options.camera = camera ? *camera : default_camera(solution, args->width, args->height);

@@ -35,7 +35,8 @@ namespace hrad::cli {
 void add_scene_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("scene", "Scene utilities: generate scale scenes for benchmarks");
   cmd->require_subcommand(1);
-  auto* gen = cmd->add_subcommand("generate", "Write a scale scene (office, pillar hall or city) with about N input polygons (OBJ + MTL)");
+  auto* gen = cmd->add_subcommand(
+      "generate", "Write a scale scene (office, pillar hall or city) with about N input polygons (OBJ + MTL)");
   struct Args {
     int polygons = 0;
     std::string seed = "1";
@@ -44,7 +45,9 @@ void add_scene_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   gen->add_option("--polygons", args->polygons, "Input polygons wanted (64 .. 10000000)")->required();
   gen->add_option("--seed", args->seed, "Placement seed (default 1)");
-  gen->add_option("--kind", args->kind, "office (default) | pillars (closed rooms) | city (blocks under an emitting sky) | urban (buildings on a ground, for view factors)");
+  gen->add_option("--kind", args->kind,
+                  "office (default) | pillars (closed rooms) | city (blocks under an emitting sky) | urban (buildings "
+                  "on a ground, for view factors)");
   gen->add_option("--out", args->out, "OBJ file to write (the .mtl goes beside it)")->required();
   gen->callback([args] {
     // Parsed here, not by CLI11 (which accepted 99999999999999999999): a whole number that fits 64 bits.
@@ -69,12 +72,14 @@ void add_scene_command(CLI::App& app) {
     OutputFiles outputs;
     outputs.declare("--out", args->out);
     outputs.declare("the material library beside --out", generated_mtl_path(args->out));
-    const AllocationScope allocating(fmt::format("the {} generated polygons", args->polygons), "ask for fewer --polygons");
+    const AllocationScope allocating(fmt::format("the {} generated polygons", args->polygons),
+                                     "ask for fewer --polygons");
     const GeneratedScene scene = args->kind == "urban" ? generate_urban({args->polygons, seed}) : generate_scene(o);
     write_generated_scene(scene, args->out, [](std::string_view line) { std::cerr << "hrad " << line << "\n"; });
     outputs.commit();
     std::cout << fmt::format("{}: {} polygons, {} x {} cells, room {} x {} x {} m\n", args->out, scene.faces.size(),
-                             scene.cells_x, scene.cells_z, scene.room_size.x(), scene.room_size.y(), scene.room_size.z());
+                             scene.cells_x, scene.cells_z, scene.room_size.x(), scene.room_size.y(),
+                             scene.room_size.z());
   });
 }
 

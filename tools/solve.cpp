@@ -9,7 +9,8 @@
 //                          receive) or hierarchical (HSA 1991 quadtrees and links); default hierarchical
 //   --max-area A           full/substructure: largest element area, scene units^2
 //                          (default: total area / 250)
-//   --patch-area A         substructure: largest shooting-patch area (default: total area / 64; the largest input area keeps the input polygons)
+//   --patch-area A         substructure: largest shooting-patch area (default: total area / 64; the largest input area
+//   keeps the input polygons)
 //   --feps F               hierarchical: form-factor refinement tolerance (default automatic)
 //   --bfeps B              hierarchical: B*F refinement tolerance (radiosity units; default unused)
 //   --aeps A               hierarchical: smallest element area (default automatic)
@@ -73,8 +74,8 @@ namespace hrad::cli {
 void add_solve_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("solve", "Solve the radiosity of a scene (full, substructure or hierarchical)");
   struct Args {
-    std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", kernel = "contour", clustering = "auto",
-                push = "hsa", basis = "constant", report, out;
+    std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", kernel = "contour",
+                       clustering = "auto", push = "hsa", basis = "constant", report, out;
     double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
     int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0;
     bool quiet = false, balance = false;
@@ -83,21 +84,29 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("SCENE", args->scene, "Scene file (.obj)")->required();
   cmd->add_option("--method", args->method, "full | substructure | hierarchical (default hierarchical)");
   cmd->add_option("--max-area", args->max_area, "Full/substructure: largest element area (default total/250)");
-  cmd->add_option("--patch-area", args->patch_area, "Substructure: largest shooting-patch area (default total area / 64)");
+  cmd->add_option("--patch-area", args->patch_area,
+                  "Substructure: largest shooting-patch area (default total area / 64)");
   cmd->add_option("--feps", args->feps, "Hierarchical: form-factor tolerance (default automatic)");
   cmd->add_option("--bfeps", args->bfeps, "Hierarchical: B*F tolerance (default unused)");
   cmd->add_option("--aeps", args->aeps, "Hierarchical: smallest element area (default automatic)");
-  cmd->add_option("--tolerance", args->tolerance,
-                  "Stop when the estimated relative error (last change x q/(1-q), q the contraction) is below this (default 1e-6)");
+  cmd->add_option(
+      "--tolerance", args->tolerance,
+      "Stop when the estimated relative error (last change x q/(1-q), q the contraction) is below this (default 1e-6)");
   cmd->add_option("--max-iterations", args->max_iterations, "Iteration limit (default 10000)");
   auto* linear_solver = cmd->add_option("--linear-solver", args->linear_solver,
                                         "Full: lu | jacobi | gauss_seidel (default lu; with --basis linear jacobi)");
   cmd->add_option("--effects", args->effects, "auto | all (default auto)");
-  cmd->add_option("--kernel", args->kernel, "Full/substructure: form-factor kernel: contour (default) | analytic (hierarchical: always analytic)");
-  cmd->add_option("--visibility-samples", args->visibility_samples, "Point pairs per partially visible pair (default 64)");
-  cmd->add_option("--clustering", args->clustering, "Hierarchical: auto | on | off (default auto: on from 200 patches)");
-  cmd->add_option("--push", args->push, "Hierarchical: hsa (default, O(links) gather) | leaf (links resolved to leaves)");
-  cmd->add_option("--basis", args->basis, "Radiosity per element: constant (default) | linear (hierarchical: --push hsa)");
+  cmd->add_option(
+      "--kernel", args->kernel,
+      "Full/substructure: form-factor kernel: contour (default) | analytic (hierarchical: always analytic)");
+  cmd->add_option("--visibility-samples", args->visibility_samples,
+                  "Point pairs per partially visible pair (default 64)");
+  cmd->add_option("--clustering", args->clustering,
+                  "Hierarchical: auto | on | off (default auto: on from 200 patches)");
+  cmd->add_option("--push", args->push,
+                  "Hierarchical: hsa (default, O(links) gather) | leaf (links resolved to leaves)");
+  cmd->add_option("--basis", args->basis,
+                  "Radiosity per element: constant (default) | linear (hierarchical: --push hsa)");
   cmd->add_flag("--balance", args->balance, "At most one level between edge neighbours (no long T-edges)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--report", args->report, "Write the solve report (JSON) here");
@@ -108,7 +117,8 @@ void add_solve_command(CLI::App& app) {
     SolveOptions o;
     o.method = parse_method(args->method);
     // Linear elements iterate their corner values: Jacobi unless the option says otherwise.
-    o.linear_solver = parse_linear_solver(args->basis == "linear" && linear_solver->count() == 0 ? "jacobi" : args->linear_solver);
+    o.linear_solver =
+        parse_linear_solver(args->basis == "linear" && linear_solver->count() == 0 ? "jacobi" : args->linear_solver);
     o.effects = parse_effects_mode(args->effects);
     o.kernel = parse_kernel(args->kernel);
     o.clustering = parse_clustering(args->clustering);
@@ -166,11 +176,12 @@ void add_solve_command(CLI::App& app) {
         share(balance.absorbed_black), share(balance.onto_backs), share(balance.escaped), share(balance.sampled_se),
         share(balance.residual));
     if (!balance.balanced()) {
-      warnings.push_back(fmt::format(
-          "{}: warning: the solution does not balance power: {} of the emitted power is unaccounted for (allowed {:.3g}: "
-          "{} plus {} standard errors); refine (--feps, --aeps, --max-area) or try --kernel analytic",
-          scene.path, fmt::format("{:.3g}", balance.relative_residual()), balance.allowed(), kPowerBalanceTolerance,
-          kPowerBalanceStandardErrors));
+      warnings.push_back(
+          fmt::format("{}: warning: the solution does not balance power: {} of the emitted power is unaccounted for "
+                      "(allowed {:.3g}: "
+                      "{} plus {} standard errors); refine (--feps, --aeps, --max-area) or try --kernel analytic",
+                      scene.path, fmt::format("{:.3g}", balance.relative_residual()), balance.allowed(),
+                      kPowerBalanceTolerance, kPowerBalanceStandardErrors));
       std::cerr << warnings.back() << "\n";
     }
 
@@ -184,7 +195,8 @@ void add_solve_command(CLI::App& app) {
       double exposure = args->exposure;
       if (exposure <= 0.0) {
         std::vector<bool> emitter(scene.patches.size());
-        for (std::size_t p = 0; p < scene.patches.size(); ++p) emitter[p] = scene.material_of(scene.patches[p]).is_emitter();
+        for (std::size_t p = 0; p < scene.patches.size(); ++p)
+          emitter[p] = scene.material_of(scene.patches[p]).is_emitter();
         exposure = auto_exposure(solution, emitter);
       }
       write_solution_ply(args->out, solution, exposure);

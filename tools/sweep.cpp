@@ -93,7 +93,8 @@ void add_sweep_command(CLI::App& app) {
                   "The smallest-element area of the feps runs, as a fraction of the total area (default automatic)");
   cmd->add_option("--push", args->push, "Hierarchical link operators to run, comma-separated: hsa, leaf (default hsa)");
   cmd->add_option("--basis", args->basis,
-                  "Bases to run for every method (hierarchical: with hsa), comma-separated: constant, linear (default constant,linear)");
+                  "Bases to run for every method (hierarchical: with hsa), comma-separated: constant, linear (default "
+                  "constant,linear)");
   cmd->add_option("--visibility-samples", args->visibility_samples,
                   "Point pairs per partly visible pair in every run (default: the solvers'); the reference uses 4x");
   cmd->add_flag("--no-gather", args->no_gather, "Do not final-gather the runs (error_l2_gathered is nan)");
@@ -103,8 +104,10 @@ void add_sweep_command(CLI::App& app) {
     if (!(args->gather_tolerance >= 0.0 && std::isfinite(args->gather_tolerance)))
       throw Error(fmt::format("--gather-tolerance: {} is not a finite number >= 0", args->gather_tolerance));
     if (args->no_gather && cmd->count("--gather-tolerance")) throw Error("--gather-tolerance: not with --no-gather");
-    if (!(args->samples >= 1 && args->samples <= 1'000'000)) throw Error(fmt::format("--samples must be in [1, 1e6], got {}", args->samples));
-    if (!(args->target_error > 0 && args->target_error < 1)) throw Error(fmt::format("--target-error must be in (0, 1), got {}", args->target_error));
+    if (!(args->samples >= 1 && args->samples <= 1'000'000))
+      throw Error(fmt::format("--samples must be in [1, 1e6], got {}", args->samples));
+    if (!(args->target_error > 0 && args->target_error < 1))
+      throw Error(fmt::format("--target-error must be in (0, 1), got {}", args->target_error));
     if (!(args->reference_elements >= 0 && args->reference_elements <= 1e6))
       throw Error(fmt::format("--reference-elements must be in [0, 1e6], got {}", args->reference_elements));
     if (!args->reference_from.empty() && args->reference_elements > 0)
@@ -116,16 +119,20 @@ void add_sweep_command(CLI::App& app) {
                               args->visibility_samples));
     // A list option given on the command line must hold at least one number ("--elements ''" is a typo,
     // not "the defaults").
-    for (const auto& [name, text] : {std::pair{"--elements", args->elements}, {"--patches", args->patches},
-                                     {"--feps", args->feps}, {"--aeps", args->aeps}})
-      if (cmd->count(name) > 0 && text.empty()) throw Error(fmt::format("{}: expected comma-separated numbers, got ''", name));
+    for (const auto& [name, text] : {std::pair{"--elements", args->elements},
+                                     {"--patches", args->patches},
+                                     {"--feps", args->feps},
+                                     {"--aeps", args->aeps}})
+      if (cmd->count(name) > 0 && text.empty())
+        throw Error(fmt::format("{}: expected comma-separated numbers, got ''", name));
     const auto elements = parse_list("--elements", args->elements, 1.0, 1e6);
     const auto patches = parse_list("--patches", args->patches, 1.0, 1e6);
     const auto feps = parse_list("--feps", args->feps, 1e-9, 1.0);
     const auto aeps = parse_list("--aeps", args->aeps, 1e-12, 1.0);
     const std::string dir = args->out;
     OutputFiles outputs;
-    for (const char* name : {"sweep.csv", "reference.json", "reference_samples.json", "fit.json", "command.txt", "pareto.png"})
+    for (const char* name :
+         {"sweep.csv", "reference.json", "reference_samples.json", "fit.json", "command.txt", "pareto.png"})
       outputs.declare("--out", dir + "/" + name);
     std::vector<std::pair<std::string, std::string>> inputs = {{"the scene", args->scene}};
     if (!args->reference_from.empty())
@@ -178,7 +185,8 @@ void add_sweep_command(CLI::App& app) {
     Reference reference;
     if (!args->reference_from.empty()) {
       reference = read_reference_samples(args->reference_from, scene, options.samples_per_patch);
-      std::cerr << fmt::format("sweep: reference from {} ({} samples)\n", args->reference_from, reference.gathered.size());
+      std::cerr << fmt::format("sweep: reference from {} ({} samples)\n", args->reference_from,
+                               reference.gathered.size());
     } else {
       std::cerr << fmt::format("sweep: reference ({:g} elements aimed at, full matrix, LU)...\n",
                                reference_elements_aimed(options));
@@ -198,11 +206,14 @@ void add_sweep_command(CLI::App& app) {
       });
     write_json_file(dir + "/fit.json", fits);
     write_file_atomically(dir + "/command.txt", [&](std::ostream& o) {
-      o << fmt::format("build/bin/hrad sweep {} --out {}{}{}", args->scene, dir, args->quick ? " --quick" : "",
-                       args->reference_elements > 0 ? fmt::format(" --reference-elements {}", args->reference_elements) : "");
+      o << fmt::format(
+          "build/bin/hrad sweep {} --out {}{}{}", args->scene, dir, args->quick ? " --quick" : "",
+          args->reference_elements > 0 ? fmt::format(" --reference-elements {}", args->reference_elements) : "");
       if (!args->reference_from.empty()) o << " --reference-from " << args->reference_from;
-      for (const auto& [name, text] : {std::pair{"--elements", args->elements}, {"--patches", args->patches},
-                                       {"--feps", args->feps}, {"--aeps", args->aeps}})
+      for (const auto& [name, text] : {std::pair{"--elements", args->elements},
+                                       {"--patches", args->patches},
+                                       {"--feps", args->feps},
+                                       {"--aeps", args->aeps}})
         if (!text.empty()) o << " " << name << " " << text;
       if (args->visibility_samples > 0) o << " --visibility-samples " << args->visibility_samples;
       if (args->no_gather) o << " --no-gather";
@@ -221,8 +232,8 @@ void add_sweep_command(CLI::App& app) {
     outputs.commit();
     std::cout << fmt::format("{} runs; wrote {}/sweep.csv, reference.json, fit.json, pareto.png\n", rows.size(), dir);
     for (const char* key : {"speedup", "speedup_smooth", "speedup_gathered", "speedup_at_common_error",
-                            "speedup_at_common_error_smooth", "speedup_at_common_error_gathered", "speedup_extrapolated",
-                            "speedup_extrapolated_smooth", "speedup_extrapolated_gathered"})
+                            "speedup_at_common_error_smooth", "speedup_at_common_error_gathered",
+                            "speedup_extrapolated", "speedup_extrapolated_smooth", "speedup_extrapolated_gathered"})
       if (fits.contains(key)) std::cout << key << ": " << fits[key].dump() << "\n";
   });
 }

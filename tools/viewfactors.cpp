@@ -70,13 +70,13 @@
 #include "commands.h"
 #include "hrad/core/error.h"
 #include "hrad/io/atomic_file.h"
-#include "hrad/io/scene_reader.h"
 #include "hrad/io/points_csv.h"
+#include "hrad/io/scene_reader.h"
 #include "hrad/viewfactors/boundary_csv.h"
 #include "hrad/viewfactors/closure.h"
+#include "hrad/viewfactors/matrix_formats.h"
 #include "hrad/viewfactors/point_factors.h"
 #include "hrad/viewfactors/radiant_exchange.h"
-#include "hrad/viewfactors/matrix_formats.h"
 #include "hrad/viewfactors/view_factor_matrix.h"
 #include "hrad/viewfactors/view_factor_report.h"
 #include "hrad/viewfactors/vs3_file.h"
@@ -93,7 +93,8 @@ double peak_memory_mb() {
 }  // namespace
 
 void add_viewfactors_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("viewfactors", "Obstructed view-factor matrix between faces or groups (thermal radiation)");
+  auto* cmd =
+      app.add_subcommand("viewfactors", "Obstructed view-factor matrix between faces or groups (thermal radiation)");
   struct Args {
     std::string scene, out, format, by = "face", report, write_vs3, points, boundary, heat;
     double visibility_error = 0.01, row_error = 0.0, threshold = 0.0, sky_temperature = 0.0;
@@ -107,12 +108,15 @@ void add_viewfactors_command(CLI::App& app) {
   cmd->add_option("--format", args->format, "dense | triplets | mtx | view3d (default: by extension)");
   cmd->add_option("--by", args->by, "face (default) or group");
   cmd->add_option("--report", args->report, "Write the JSON report here");
-  cmd->add_option("--visibility-error", args->visibility_error, "Target standard error of partly visible fractions (default 0.01)");
-  cmd->add_option("--row-error", args->row_error, "Target standard error of each row sum (allocates rays; default off)");
+  cmd->add_option("--visibility-error", args->visibility_error,
+                  "Target standard error of partly visible fractions (default 0.01)");
+  cmd->add_option("--row-error", args->row_error,
+                  "Target standard error of each row sum (allocates rays; default off)");
   cmd->add_option("--max-rays", args->max_rays, "Most point pairs per partly visible pair (default 4096)");
   cmd->add_flag("--exact", args->exact, "Partly visible pairs by the exact visible region");
   cmd->add_option("--threshold", args->threshold, "Skip pair blocks whose factor bound is below this (default 0)");
-  cmd->add_flag("--enforce-closure", args->enforce_closure, "Adjust a closed model's rows to sum to 1, keeping reciprocity");
+  cmd->add_flag("--enforce-closure", args->enforce_closure,
+                "Adjust a closed model's rows to sum to 1, keeping reciprocity");
   cmd->add_option("--points", args->points, "Probe points (CSV x,y,z,nx,ny,nz): point-to-surface factors to --out");
   cmd->add_option("--boundary", args->boundary, "Radiant exchange: conditions (CSV surface,temperature,heat_flux)");
   cmd->add_option("--heat", args->heat, "Radiant exchange: write net heat per surface here (CSV)");
@@ -120,19 +124,27 @@ void add_viewfactors_command(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
   cmd->callback([args] {
-    if (args->by != "face" && args->by != "group") throw Error(fmt::format("--by: '{}' is not face or group", args->by));
+    if (args->by != "face" && args->by != "group")
+      throw Error(fmt::format("--by: '{}' is not face or group", args->by));
     if (!(args->visibility_error > 0.0 && args->visibility_error < 1.0))
       throw Error(fmt::format("--visibility-error: {} is not in (0, 1)", args->visibility_error));
-    if (!(args->row_error >= 0.0 && args->row_error < 1.0)) throw Error(fmt::format("--row-error: {} is not in [0, 1)", args->row_error));
-    if (args->row_error > 0.0 && args->exact) throw Error("--row-error and --exact exclude each other (the exact region has no sampling error)");
-    if (args->max_rays < 64 || args->max_rays > 1 << 24) throw Error(fmt::format("--max-rays: {} is not in [64, 16777216]", args->max_rays));
-    if (!(args->threshold >= 0.0 && args->threshold < 1.0)) throw Error(fmt::format("--threshold: {} is not in [0, 1)", args->threshold));
+    if (!(args->row_error >= 0.0 && args->row_error < 1.0))
+      throw Error(fmt::format("--row-error: {} is not in [0, 1)", args->row_error));
+    if (args->row_error > 0.0 && args->exact)
+      throw Error("--row-error and --exact exclude each other (the exact region has no sampling error)");
+    if (args->max_rays < 64 || args->max_rays > 1 << 24)
+      throw Error(fmt::format("--max-rays: {} is not in [64, 16777216]", args->max_rays));
+    if (!(args->threshold >= 0.0 && args->threshold < 1.0))
+      throw Error(fmt::format("--threshold: {} is not in [0, 1)", args->threshold));
     if (args->threads < 0) throw Error(fmt::format("--threads: {} is negative", args->threads));
-    if (args->boundary.empty() != args->heat.empty()) throw Error(args->heat.empty() ? "--boundary needs --heat Q.csv" : "--heat needs --boundary B.csv");
+    if (args->boundary.empty() != args->heat.empty())
+      throw Error(args->heat.empty() ? "--boundary needs --heat Q.csv" : "--heat needs --boundary B.csv");
     if (!args->points.empty() && !args->boundary.empty()) throw Error("--points and --boundary exclude each other");
-    if (!(args->sky_temperature >= 0.0)) throw Error(fmt::format("--sky-temperature: {} K is negative", args->sky_temperature));
+    if (!(args->sky_temperature >= 0.0))
+      throw Error(fmt::format("--sky-temperature: {} K is negative", args->sky_temperature));
     if (args->out.empty() && args->write_vs3.empty()) throw Error("give --out F (and/or --write-vs3 M.vs3)");
-    const MatrixFormat format = args->out.empty() ? MatrixFormat::kDense : matrix_format(args->format, args->out, "--out");
+    const MatrixFormat format =
+        args->out.empty() ? MatrixFormat::kDense : matrix_format(args->format, args->out, "--out");
     const bool vs3_input = std::filesystem::path(args->scene).extension() == ".vs3";
     if (vs3_input && args->by != "face") throw Error("--by group: a .vs3 model's rows are its surfaces");
     if (vs3_input && !args->write_vs3.empty()) throw Error("--write-vs3: the scene is already a .vs3 file");
@@ -157,7 +169,8 @@ void add_viewfactors_command(CLI::App& app) {
     options.threshold = args->threshold;
     options.row_error = args->row_error;
     options.threads = args->threads;
-    if (!args->quiet) options.progress = [](std::string_view line) { std::cerr << "hrad viewfactors: " << line << "\n"; };
+    if (!args->quiet)
+      options.progress = [](std::string_view line) { std::cerr << "hrad viewfactors: " << line << "\n"; };
 
     std::vector<std::string> warnings;
     ObjReadOptions read_options;
@@ -177,7 +190,8 @@ void add_viewfactors_command(CLI::App& app) {
     outputs.check_inputs(inputs);
     for (const std::string& w : warnings) std::cerr << w << "\n";
     if (!args->write_vs3.empty())
-      write_file_atomically(args->write_vs3, [&](std::ostream& o) { write_vs3(o, scene, face_units(scene), scene.path); });
+      write_file_atomically(args->write_vs3,
+                            [&](std::ostream& o) { write_vs3(o, scene, face_units(scene), scene.path); });
     if (args->out.empty()) {
       outputs.commit();
       std::cout << fmt::format("{}: wrote {}\n", scene.path, args->write_vs3);
@@ -190,13 +204,15 @@ void add_viewfactors_command(CLI::App& app) {
         std::string line;
         for (int i = 0; i < pf.points; ++i) {
           line.clear();
-          for (int u = 0; u < pf.units; ++u) fmt::format_to(std::back_inserter(line), "{}{:.17g}", u ? "," : "", pf.at(i, u));
+          for (int u = 0; u < pf.units; ++u)
+            fmt::format_to(std::back_inserter(line), "{}{:.17g}", u ? "," : "", pf.at(i, u));
           o << line << "\n";
         }
       });
       outputs.commit();
-      std::cout << fmt::format("{}: {} points x {} surfaces; point-patch pairs {} visible, {} hidden, {} partial (exact regions)\n",
-                               scene.path, pf.points, pf.units, pf.visible, pf.hidden, pf.partial);
+      std::cout << fmt::format(
+          "{}: {} points x {} surfaces; point-patch pairs {} visible, {} hidden, {} partial (exact regions)\n",
+          scene.path, pf.points, pf.units, pf.visible, pf.hidden, pf.partial);
       return;
     }
     std::vector<SurfaceCondition> conditions;
@@ -213,16 +229,20 @@ void add_viewfactors_command(CLI::App& app) {
         o << "surface,name,area,emissivity,temperature,heat_flux,heat_rate,radiosity\n";
         for (int u = 0; u < m.n; ++u) {
           const auto i = static_cast<std::size_t>(u);
-          o << fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", u, units.names[i], m.area[i], units.emissivity[i],
-                           x.temperature[i], x.heat_flux[i], x.heat_flux[i] * m.area[i], x.radiosity[i]);
+          o << fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", u, units.names[i], m.area[i],
+                           units.emissivity[i], x.temperature[i], x.heat_flux[i], x.heat_flux[i] * m.area[i],
+                           x.radiosity[i]);
         }
       });
     }
-    if (!args->report.empty()) write_file_atomically(args->report, [&](std::ostream& o) { o << report.dump(2) << "\n"; });
+    if (!args->report.empty())
+      write_file_atomically(args->report, [&](std::ostream& o) { o << report.dump(2) << "\n"; });
     outputs.commit();
     std::cout << fmt::format(
-        "{}: {} surfaces, {} nonzeros; pairs {} ({} skipped below {}, {} visible, {} hidden, {} partial, {} facing away); "
-        "row sums {:.12g}..{:.12g}, max reciprocity error {:.3g}, max row sampling error {:.3g}, max skipped bound {:.3g}; "
+        "{}: {} surfaces, {} nonzeros; pairs {} ({} skipped below {}, {} visible, {} hidden, {} partial, {} facing "
+        "away); "
+        "row sums {:.12g}..{:.12g}, max reciprocity error {:.3g}, max row sampling error {:.3g}, max skipped bound "
+        "{:.3g}; "
         "{:.3f} s, peak memory {:.0f} MB\n",
         scene.path, m.n, m.nonzeros(), m.counters.patch_pairs, m.counters.skipped_pairs, args->threshold,
         m.counters.fully_visible, m.counters.fully_hidden, m.counters.partial, m.counters.facing_away,
@@ -230,9 +250,11 @@ void add_viewfactors_command(CLI::App& app) {
         report["max_reciprocity_error"].get<double>(), report["max_sampling_error"].get<double>(),
         report["max_skipped_bound"].get<double>(), m.counters.seconds, peak_memory_mb());
     if (args->enforce_closure)
-      std::cout << fmt::format("closure: rows off by up to {:.3g} before, {:.3g} after; largest factor change {:.3g}, {:.3g} of the exchange moved\n",
-                               closure.max_row_error_before, closure.max_row_error_after, closure.max_factor_change,
-                               closure.relative_change);
+      std::cout << fmt::format(
+          "closure: rows off by up to {:.3g} before, {:.3g} after; largest factor change {:.3g}, {:.3g} of the "
+          "exchange moved\n",
+          closure.max_row_error_before, closure.max_row_error_after, closure.max_factor_change,
+          closure.relative_change);
   });
 }
 

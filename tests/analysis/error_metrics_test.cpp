@@ -50,8 +50,9 @@ Solution whole_square(const Rgb& value) {
 TEST(PatchSamples, WeightsAddUpToTheArea) {
   Scene s;
   s.materials.push_back(Material{});
-  s.patches.push_back(make_patch({Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(3, 2, 0), Vec3(0.5, 2, 0)}));  // trapezoid: (4 + 2.5) / 2 * 2 = 6.5
-  s.patches.push_back(make_patch({Vec3(0, 0, 1), Vec3(3, 0, 1), Vec3(0, 0, 5)}));                   // triangle, 6
+  s.patches.push_back(make_patch(
+      {Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(3, 2, 0), Vec3(0.5, 2, 0)}));            // trapezoid: (4 + 2.5) / 2 * 2 = 6.5
+  s.patches.push_back(make_patch({Vec3(0, 0, 1), Vec3(3, 0, 1), Vec3(0, 0, 5)}));  // triangle, 6
   const std::vector<SurfaceSample> samples = patch_samples(s, 100, SampleLayout::centres);
   ASSERT_EQ(samples.size(), 200u);
   double a0 = 0.0, a1 = 0.0;
@@ -79,8 +80,8 @@ TEST(PatchSamples, WeightsAddUpToTheArea) {
   for (int j = 0; j < 10; ++j)
     for (int i = 0; i < 10; ++i) {
       const Vec3& x = jittered[static_cast<std::size_t>(j * 10 + i)].position;
-      const double v = x.y() / 2.0;                             // y = 2 v on this trapezoid
-      const double left = 0.5 * v, right = 4.0 - v;           // x(u) between the slanted sides
+      const double v = x.y() / 2.0;                  // y = 2 v on this trapezoid
+      const double left = 0.5 * v, right = 4.0 - v;  // x(u) between the slanted sides
       const double u = (x.x() - left) / (right - left);
       EXPECT_GE(u, i / 10.0 - 1e-12);
       EXPECT_LE(u, (i + 1) / 10.0 + 1e-12);
@@ -116,8 +117,9 @@ TEST(ErrorMetrics, JitteredSamplesDoNotAliasWithQuadtreeLeaves) {
   for (const int g : {16, 32}) {
     const Solution s = grid_of_averages(g);
     const double exact = 0.5 / g;
-    const double centres = compare_to_function(scene, s, b_is_x, 256, Emitters::include, Field::constant,
-                                               SampleLayout::centres).relative_l2;
+    const double centres =
+        compare_to_function(scene, s, b_is_x, 256, Emitters::include, Field::constant, SampleLayout::centres)
+            .relative_l2;
     const double jittered = compare_to_function(scene, s, b_is_x, 256).relative_l2;
     EXPECT_NEAR(jittered, exact, 0.1 * exact) << g;
     if (g == 16) EXPECT_LT(centres, 1e-12);
@@ -155,8 +157,7 @@ TEST(ErrorMetrics, AreaWeightedAcrossDifferentMeshes) {
 TEST(ErrorMetrics, ConstantOffsetGivesItsRelativeNorm) {
   const Scene scene = unit_square_scene();
   const Rgb ref(0.2, 0.5, 0.7), offset(0.1, -0.2, 0.3);
-  const ErrorMetrics m =
-      compare_solutions(scene, split_square(0.6, ref + offset, ref + offset), whole_square(ref));
+  const ErrorMetrics m = compare_solutions(scene, split_square(0.6, ref + offset, ref + offset), whole_square(ref));
   const double expected = std::sqrt(0.01 + 0.04 + 0.09) / std::sqrt(0.04 + 0.25 + 0.49);
   EXPECT_NEAR(m.relative_l2, expected, 1e-12);
   EXPECT_NEAR(m.relative_linf, expected, 1e-12);
@@ -219,9 +220,9 @@ TEST(ErrorMetrics, AnalyticReferenceMatchesTheMidpointRule) {
   // 1/3 - h^2/12 and (x - 1/2)^2 to 1/12 - h^2/12, so rel L2 = sqrt((1/12 - h2/12) / (1/3 - h2/12)),
   // close to the continuous 1/2.
   const Scene scene = unit_square_scene();
-  const ErrorMetrics m = compare_to_function(scene, whole_square(Rgb::Constant(0.5)),
-                                             [](const Vec3& x, int) { return Rgb::Constant(x.x()); }, 256,
-                                             Emitters::include, Field::constant, SampleLayout::centres);
+  const ErrorMetrics m = compare_to_function(
+      scene, whole_square(Rgb::Constant(0.5)), [](const Vec3& x, int) { return Rgb::Constant(x.x()); }, 256,
+      Emitters::include, Field::constant, SampleLayout::centres);
   const double h2 = 1.0 / 256;
   EXPECT_NEAR(m.relative_l2, std::sqrt((1.0 / 12 - h2 / 12) / (1.0 / 3 - h2 / 12)), 1e-12);
   EXPECT_NEAR(m.relative_l2, 0.5, 2e-3);
@@ -233,8 +234,8 @@ TEST(SolutionSampler, FindsLeavesWithTVerticesAndFallsBackOutside) {
   // A leaf with a T-vertex on its top edge (a pentagon with a collinear vertex) next to two quads.
   const Scene scene = unit_square_scene();
   Solution s;
-  s.vertices = {Vec3(0, 0, 0), Vec3(0.5, 0, 0), Vec3(0.5, 0.5, 0), Vec3(0.5, 1, 0), Vec3(0, 1, 0),
-                Vec3(1, 0, 0), Vec3(1, 0.5, 0), Vec3(1, 1, 0)};
+  s.vertices = {Vec3(0, 0, 0), Vec3(0.5, 0, 0), Vec3(0.5, 0.5, 0), Vec3(0.5, 1, 0),
+                Vec3(0, 1, 0), Vec3(1, 0, 0),   Vec3(1, 0.5, 0),   Vec3(1, 1, 0)};
   s.faces = {{0, 1, 2, 3, 4}, {1, 5, 6, 2}, {2, 6, 7, 3}};
   s.face_patch = {0, 0, 0};
   s.face_radiosity = {Rgb::Constant(1), Rgb::Constant(2), Rgb::Constant(3)};
@@ -346,11 +347,15 @@ TEST(ErrorMetrics, InterpolatedFieldAgainstAConstantByHand) {
   Solution s = whole_square(Rgb::Constant(0.5));
   s.vertex_radiosity = {Rgb::Zero(), Rgb::Zero(), Rgb::Ones(), Rgb::Ones()};
   const int m = 16;
-  const ErrorMetrics e = compare_to_function(scene, s, [](const Vec3&, int) { return Rgb::Constant(0.5); }, m * m,
-                                             Emitters::include, Field::interpolated, SampleLayout::centres);
+  const ErrorMetrics e = compare_to_function(
+      scene, s, [](const Vec3&, int) { return Rgb::Constant(0.5); }, m * m, Emitters::include, Field::interpolated,
+      SampleLayout::centres);
   EXPECT_NEAR(e.relative_l2, std::sqrt((m * m - 1.0) / (12.0 * m * m)) / 0.5, 1e-12);
   EXPECT_NEAR(e.relative_linf, (0.5 - 0.5 / m) / 0.5, 1e-12);
-  EXPECT_EQ(compare_to_function(scene, s, [](const Vec3&, int) { return Rgb::Constant(0.5); }, m * m).relative_l2, 0.0);
+  EXPECT_EQ(compare_to_function(
+                scene, s, [](const Vec3&, int) { return Rgb::Constant(0.5); }, m * m)
+                .relative_l2,
+            0.0);
 }
 
 }  // namespace

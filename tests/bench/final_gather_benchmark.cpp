@@ -16,12 +16,12 @@
 #include <tbb/global_control.h>
 
 #include "hrad/analysis/error_metrics.h"
+#include "hrad/core/tone_map.h"
 #include "hrad/formfactor/point_to_polygon.h"
 #include "hrad/gather/gathered_image.h"
 #include "hrad/gather/leaf_gather.h"
 #include "hrad/io/obj_reader.h"
 #include "hrad/render/render.h"
-#include "hrad/core/tone_map.h"
 #include "hrad/solvers/solve.h"
 
 namespace hrad {

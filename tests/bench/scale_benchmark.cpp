@@ -59,7 +59,14 @@ void BM_PillarsTwoThreads(benchmark::State& state) { run(state, SceneLayout::kPi
 
 }  // namespace
 
-BENCHMARK(BM_Office)->Arg(250)->Arg(1000)->Arg(4000)->Arg(16000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_Office)
+    ->Arg(250)
+    ->Arg(1000)
+    ->Arg(4000)
+    ->Arg(16000)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
 BENCHMARK(BM_Pillars)->Arg(1000)->Arg(4000)->Arg(16000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 BENCHMARK(BM_City)->Arg(1000)->Arg(4000)->Arg(16000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 BENCHMARK(BM_OfficeUnclustered)->Arg(250)->Arg(1000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();

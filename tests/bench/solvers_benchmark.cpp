@@ -13,7 +13,8 @@
 namespace {
 
 const hrad::Scene& cornell() {
-  static const hrad::Scene s = hrad::read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  static const hrad::Scene s =
+      hrad::read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
   return s;
 }
 
@@ -31,8 +32,11 @@ void BM_CornellDefaults(benchmark::State& state) {
   state.counters["ff_evals"] = static_cast<double>(sum.form_factor_evaluations);
   state.counters["vis_queries"] = static_cast<double>(sum.visibility_queries);
 }
-BENCHMARK(BM_CornellDefaults)->Arg(static_cast<int>(hrad::Method::kFull))->Arg(static_cast<int>(hrad::Method::kSubstructure))
-    ->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_CornellDefaults)
+    ->Arg(static_cast<int>(hrad::Method::kFull))
+    ->Arg(static_cast<int>(hrad::Method::kSubstructure))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 // All pairs of 200 Cornell-box elements, unoccluded, per kernel.
 void BM_KernelPairs(benchmark::State& state) {
@@ -41,7 +45,8 @@ void BM_KernelPairs(benchmark::State& state) {
   const std::vector<hrad::NodeId> leaves = h.all_leaves();
   hrad::Effects effects;
   effects.visibility = false;
-  const hrad::FormFactorEvaluator ev(cornell(), effects, nullptr, 16, static_cast<hrad::FormFactorKernel>(state.range(0)));
+  const hrad::FormFactorEvaluator ev(cornell(), effects, nullptr, 16,
+                                     static_cast<hrad::FormFactorKernel>(state.range(0)));
   const std::size_t n = std::min<std::size_t>(leaves.size(), 200);
   for (auto _ : state) {
     double sum = 0.0;
@@ -55,8 +60,11 @@ void BM_KernelPairs(benchmark::State& state) {
   }
   state.counters["kernel_calls"] = static_cast<double>(ev.evaluations());
 }
-BENCHMARK(BM_KernelPairs)->Arg(static_cast<int>(hrad::FormFactorKernel::kAnalytic))
-    ->Arg(static_cast<int>(hrad::FormFactorKernel::kPointContour))->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_KernelPairs)
+    ->Arg(static_cast<int>(hrad::FormFactorKernel::kAnalytic))
+    ->Arg(static_cast<int>(hrad::FormFactorKernel::kPointContour))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 }  // namespace
 

@@ -38,7 +38,8 @@ struct LeafPoints {
 };
 
 LeafPoints leaf_points(const Scene& scene, const Solution& s) {
-  static constexpr double kBary[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.6, 0.2, 0.2}, {0.2, 0.6, 0.2}, {0.2, 0.2, 0.6}};
+  static constexpr double kBary[4][3] = {
+      {1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.6, 0.2, 0.2}, {0.2, 0.6, 0.2}, {0.2, 0.2, 0.6}};
   static constexpr double kWeight[4] = {-27.0 / 48, 25.0 / 48, 25.0 / 48, 25.0 / 48};
   LeafPoints out;
   for (std::size_t f = 0; f < s.faces.size(); ++f) {

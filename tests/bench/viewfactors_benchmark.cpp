@@ -42,7 +42,8 @@ void BM_UrbanMatrix(benchmark::State& state) {
   ViewFactorOptions o;
   o.threshold = 1e-3;
   for (auto _ : state) benchmark::DoNotOptimize(compute_view_factors(s, face_units(s), o).nonzeros());
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(s.patches.size() * (s.patches.size() - 1) / 2));
+  state.SetItemsProcessed(state.iterations() *
+                          static_cast<std::int64_t>(s.patches.size() * (s.patches.size() - 1) / 2));
 }
 BENCHMARK(BM_UrbanMatrix)->Arg(500)->Unit(benchmark::kSecond)->Iterations(1);
 

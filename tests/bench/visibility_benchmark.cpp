@@ -9,10 +9,10 @@
 
 #include <Eigen/Geometry>
 
+#include "hrad/geometry/polygon.h"
 #include "hrad/io/obj_reader.h"
 #include "hrad/visibility/visibility.h"
 #include "hrad/visibility/visible_region.h"
-#include "hrad/geometry/polygon.h"
 
 namespace hrad {
 namespace {
@@ -62,10 +62,12 @@ Scene furnished_room(int triangles, std::uint64_t seed) {
   const double size = 0.5 / std::sqrt(double(boxes));
   for (int i = 0; i < boxes; ++i) {
     const Vec3 c(u(rng), u(rng), u(rng));
-    const Eigen::Matrix3d r = Eigen::Quaterniond(Eigen::Vector4d(d(rng), d(rng), d(rng), d(rng)).normalized()).toRotationMatrix();
+    const Eigen::Matrix3d r =
+        Eigen::Quaterniond(Eigen::Vector4d(d(rng), d(rng), d(rng), d(rng)).normalized()).toRotationMatrix();
     const Vec3 h = size * Vec3(e(rng), e(rng), e(rng));
     Vec3 v[8];
-    for (int k = 0; k < 8; ++k) v[k] = c + r * Vec3((k & 1 ? 1 : -1) * h.x(), (k & 2 ? 1 : -1) * h.y(), (k & 4 ? 1 : -1) * h.z());
+    for (int k = 0; k < 8; ++k)
+      v[k] = c + r * Vec3((k & 1 ? 1 : -1) * h.x(), (k & 2 ? 1 : -1) * h.y(), (k & 4 ? 1 : -1) * h.z());
     const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto& q : quads) {
       add_patch(s, {v[q[0]], v[q[1]], v[q[2]]});
@@ -89,7 +91,10 @@ std::vector<Query> wall_queries(const Scene& s, int count, std::uint64_t seed) {
   auto point = [&](int p) {
     const auto& v = s.patches[p].vertices;
     double s1 = u(rng), s2 = u(rng);
-    if (s1 + s2 > 1) { s1 = 1 - s1; s2 = 1 - s2; }
+    if (s1 + s2 > 1) {
+      s1 = 1 - s1;
+      s2 = 1 - s2;
+    }
     return Vec3(v[0] + s1 * (v[1] - v[0]) + s2 * (v[2] - v[0]));
   };
   while (static_cast<int>(q.size()) < count) {
@@ -155,7 +160,9 @@ std::vector<std::pair<std::vector<Vec3>, int>> elements(const Scene& s, int k) {
       for (int i = 0; i < k; ++i)
         for (int j = 0; j < k; ++j) out.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}, p});
     } else if (v.size() == 3) {
-      auto at = [&](int i, int j) { return Vec3(v[0] + (double(i) / k) * (v[1] - v[0]) + (double(j) / k) * (v[2] - v[0])); };
+      auto at = [&](int i, int j) {
+        return Vec3(v[0] + (double(i) / k) * (v[1] - v[0]) + (double(j) / k) * (v[2] - v[0]));
+      };
       for (int i = 0; i < k; ++i)
         for (int j = 0; i + j < k; ++j) {
           out.push_back({{at(i, j), at(i + 1, j), at(i, j + 1)}, p});
@@ -220,7 +227,8 @@ void BM_EstimatePartialCornell(benchmark::State& state) {
     benchmark::DoNotOptimize(v->estimate(el[i].first, el[i].second, el[j].first, el[j].second, samples, k));
   }
   state.SetItemsProcessed(state.iterations());
-  state.counters["rays_per_s"] = benchmark::Counter(double(v->counters().segment_queries.load()), benchmark::Counter::kIsRate);
+  state.counters["rays_per_s"] =
+      benchmark::Counter(double(v->counters().segment_queries.load()), benchmark::Counter::kIsRate);
   state.counters["partial_pairs"] = double(partial.size());
 }
 BENCHMARK(BM_EstimatePartialCornell)->Arg(16)->Arg(64)->Unit(benchmark::kMicrosecond);

@@ -42,8 +42,11 @@ TEST(CliRender, FinalGatherWritesPngAndExrTheSameAtAnyThreadCount) {
   const HdrImage c = read_exr(dir.path("c.exr"));
   for (std::size_t i = 0; i < a.pixels.size(); ++i) EXPECT_TRUE((a.pixels[i] == c.pixels[i]).all()) << i;
   // A scene that is not the solution's is refused, naming the solution.
-  const RunResult wrong = run_hrad("render " + dir.path("s.ply") + " --scene notebooks_data/scenes/two_far_surfaces.obj "
-                                   "--final-gather --quiet --out " + dir.path("w.png"), dir);
+  const RunResult wrong = run_hrad("render " + dir.path("s.ply") +
+                                       " --scene notebooks_data/scenes/two_far_surfaces.obj "
+                                       "--final-gather --quiet --out " +
+                                       dir.path("w.png"),
+                                   dir);
   EXPECT_EQ(wrong.exit_code, 1);
   EXPECT_NE(wrong.err.find(dir.path("s.ply") + ": patch id"), std::string::npos) << wrong.err;
 }
@@ -64,14 +67,18 @@ TEST(CliRender, FinalGatherOfAFurnaceRoomIsTheClosedFormAtEveryPixel) {
             "mtllib cube.mtl\nusemtl wall\n"
             "v 0 0 0\nv 2 0 0\nv 2 0 2\nv 0 0 2\nv 0 2 0\nv 2 2 0\nv 2 2 2\nv 0 2 2\nv 1 0 0\nv 1 0 2\n"
             "f 1 4 10 9\nf 9 10 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n");
-  const RunResult solve = run_hrad("solve " + dir.path("cube.obj") + " --method full --linear-solver lu --max-area 0.3 "
-                                   "--quiet --out " + dir.path("s.ply"), dir);
+  const RunResult solve = run_hrad("solve " + dir.path("cube.obj") +
+                                       " --method full --linear-solver lu --max-area 0.3 "
+                                       "--quiet --out " +
+                                       dir.path("s.ply"),
+                                   dir);
   ASSERT_EQ(solve.exit_code, 0) << solve.err;
   // Default grouping (a uniform field: whole patches gathered as one polygon each) and leaf by leaf.
   for (const std::string tolerance : {"", " --gather-tolerance 0"}) {
     const RunResult r = run_hrad("render " + dir.path("s.ply") + " --scene " + dir.path("cube.obj") +
                                      " --final-gather --camera 1.7,1.5,0.3,0.2,0.4,1.8,0,1,0,90 --width 24 --height 18"
-                                     " --samples-per-pixel 2 --quiet --out " + dir.path("f.exr") + tolerance,
+                                     " --samples-per-pixel 2 --quiet --out " +
+                                     dir.path("f.exr") + tolerance,
                                  dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const HdrImage image = read_exr(dir.path("f.exr"));

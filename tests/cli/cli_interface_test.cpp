@@ -44,8 +44,11 @@ TEST(CliFormFactor, PrintsBothDirectionsMatchingHowell) {
 
 TEST(CliSolve, ReportHoldsTheInterfaceFieldsAndFullMatrixCountsNSquared) {
   TempDir dir;
-  const RunResult r = run_hrad("solve notebooks_data/scenes/two_far_surfaces.obj --method full --max-area 1 --quiet "
-                               "--report " + dir.path("r.json") + " --out " + dir.path("s.ply"), dir);
+  const RunResult r = run_hrad(
+      "solve notebooks_data/scenes/two_far_surfaces.obj --method full --max-area 1 --quiet "
+      "--report " +
+          dir.path("r.json") + " --out " + dir.path("s.ply"),
+      dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << "--quiet printed: " << r.err;
   const auto j = nlohmann::json::parse(slurp(dir.path("r.json")));
@@ -82,10 +85,11 @@ TEST(CliSolve, LinearElementsOfTheFullMatrixIterateByDefaultAndKeepThePatchMeans
   double mean[2] = {0.0, 0.0};
   for (const int linear : {0, 1}) {
     const std::string report = dir.path(linear ? "l.json" : "c.json");
-    const RunResult r = run_hrad(std::string("solve notebooks_data/scenes/two_far_surfaces.obj --method full --max-area 1 "
-                                             "--tolerance 1e-10 --quiet --basis ") +
-                                     (linear ? "linear" : "constant") + " --report " + report,
-                                 dir);
+    const RunResult r =
+        run_hrad(std::string("solve notebooks_data/scenes/two_far_surfaces.obj --method full --max-area 1 "
+                             "--tolerance 1e-10 --quiet --basis ") +
+                     (linear ? "linear" : "constant") + " --report " + report,
+                 dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::json::parse(slurp(report));
     EXPECT_EQ(j.at("options").at("basis"), linear ? "linear" : "constant");
@@ -96,8 +100,10 @@ TEST(CliSolve, LinearElementsOfTheFullMatrixIterateByDefaultAndKeepThePatchMeans
   }
   EXPECT_GT(mean[0], 0.0);
   EXPECT_NEAR(mean[1], mean[0], 1e-4 * mean[0]);
-  const RunResult lu = run_hrad("solve notebooks_data/scenes/two_far_surfaces.obj --method full --basis linear "
-                                "--linear-solver lu --quiet", dir);
+  const RunResult lu = run_hrad(
+      "solve notebooks_data/scenes/two_far_surfaces.obj --method full --basis linear "
+      "--linear-solver lu --quiet",
+      dir);
   EXPECT_NE(lu.exit_code, 0);
   EXPECT_NE(lu.err.find("--linear-solver"), std::string::npos) << lu.err;
 }
@@ -131,10 +137,11 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   std::istringstream csv(slurp(out + "/sweep.csv"));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line,
-            "method,parameter,value,elements,links,form_factor_evaluations,visibility_queries,seconds,error_l2,error_linf,"
-            "iterations,termination,error_l2_smooth,error_linf_smooth,error_l2_gathered,error_linf_gathered,"
-            "gather_seconds,gather_work");
+  EXPECT_EQ(
+      line,
+      "method,parameter,value,elements,links,form_factor_evaluations,visibility_queries,seconds,error_l2,error_linf,"
+      "iterations,termination,error_l2_smooth,error_linf_smooth,error_l2_gathered,error_linf_gathered,"
+      "gather_seconds,gather_work");
   struct Row {
     std::string method, parameter;
     double elements, links, error_l2, error_l2_smooth, error_l2_gathered;
@@ -143,8 +150,8 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   while (std::getline(csv, line)) {
     const std::vector<std::string> cells = csv_cells(line);
     ASSERT_EQ(cells.size(), 18u) << line;
-    rows.push_back({cells[0], cells[1], std::stod(cells[3]), std::stod(cells[4]), std::stod(cells[8]), std::stod(cells[12]),
-                    std::stod(cells[14])});
+    rows.push_back({cells[0], cells[1], std::stod(cells[3]), std::stod(cells[4]), std::stod(cells[8]),
+                    std::stod(cells[12]), std::stod(cells[14])});
     EXPECT_GT(rows.back().error_l2_gathered, 0.0) << line;  // measured (not nan) for every run
     EXPECT_LT(rows.back().error_l2_gathered, 1.0) << line;
     EXPECT_GT(std::stod(cells[17]), 0.0) << line;  // the gather's work
@@ -191,7 +198,8 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   EXPECT_EQ(ref.at("scene"), "notebooks_data/scenes/simple_room.obj");
 
   const auto fit = nlohmann::json::parse(slurp(out + "/fit.json"));
-  for (const char* method : {"full", "substructure", "hierarchical", "full_linear", "substructure_linear", "hierarchical_linear"})
+  for (const char* method :
+       {"full", "substructure", "hierarchical", "full_linear", "substructure_linear", "hierarchical_linear"})
     EXPECT_TRUE(fit.at("methods").at(method).at("time_to_target_error").contains("reached")) << method;
   // (substructuring's element counts collide here, 102 twice: fewer than 3 distinct, no fit)
   for (const char* method : {"full", "hierarchical"})
@@ -205,8 +213,11 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   // --reference-from: a second sweep with one setting per parameter reads the reference back
   // instead of solving it, and judges the same runs to the same digits.
   const std::string again = dir.path("again");
-  const RunResult r2 = run_hrad("sweep notebooks_data/scenes/simple_room.obj --quick --elements 128 --patches 20 "
-                                "--feps 0.3 --aeps 0.001 --basis constant --reference-from " + out + " --out " + again, dir);
+  const RunResult r2 = run_hrad(
+      "sweep notebooks_data/scenes/simple_room.obj --quick --elements 128 --patches 20 "
+      "--feps 0.3 --aeps 0.001 --basis constant --reference-from " +
+          out + " --out " + again,
+      dir);
   ASSERT_EQ(r2.exit_code, 0) << r2.err;
   EXPECT_NE(r2.err.find("reference from"), std::string::npos) << r2.err;
   EXPECT_EQ(r2.err.find("LU"), std::string::npos) << r2.err;
@@ -236,12 +247,13 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   EXPECT_EQ(nlohmann::json::parse(slurp(again + "/reference.json")).at("reused_from"), out);
   // command.txt reruns the sweep: every option given is in it.
   const std::string command = slurp(again + "/command.txt");
-  for (const char* given : {"--quick", "--elements 128", "--patches 20", "--feps 0.3", "--aeps 0.001", "--basis constant",
-                            "--reference-from"})
+  for (const char* given : {"--quick", "--elements 128", "--patches 20", "--feps 0.3", "--aeps 0.001",
+                            "--basis constant", "--reference-from"})
     EXPECT_NE(command.find(given), std::string::npos) << given << " missing from " << command;
   // Another scene's samples are refused before anything runs, naming the file.
-  const RunResult wrong = run_hrad("sweep notebooks_data/scenes/cornell_box.obj --quick --reference-from " + out +
-                                   " --out " + dir.path("wrong"), dir);
+  const RunResult wrong = run_hrad(
+      "sweep notebooks_data/scenes/cornell_box.obj --quick --reference-from " + out + " --out " + dir.path("wrong"),
+      dir);
   EXPECT_NE(wrong.exit_code, 0);
   EXPECT_NE(wrong.err.find(out + "/reference_samples.json: "), std::string::npos) << wrong.err;
   EXPECT_NE(wrong.err.find("another scene"), std::string::npos) << wrong.err;

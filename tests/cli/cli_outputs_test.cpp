@@ -130,9 +130,8 @@ TEST(CliOutputs, FilesGetTheUmasksModeLikeAnyProgramsOutput) {
   for (const auto& [mask, mode] : {std::pair{"022", 0644}, {"027", 0640}}) {
     TempDir out;
     const std::string o = out.root().string();
-    const RunResult r = run_hrad(std::string("solve ") + f.obj + " --quiet --report " + o + "/r.json --out " + o +
-                                     "/s.ply",
-                                 out);
+    const RunResult r =
+        run_hrad(std::string("solve ") + f.obj + " --quiet --report " + o + "/r.json --out " + o + "/s.ply", out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     // run_hrad's shell inherits this process's umask: set it for the child explicitly instead.
     const RunResult masked = run_hrad(std::string("--version >/dev/null; umask ") + mask + "; '" + HRAD_EXECUTABLE +
@@ -155,7 +154,8 @@ pid_t start_hrad(const std::vector<std::string>& args) {
   if (pid == 0) {
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
-    if (std::freopen("/dev/null", "w", stderr) == nullptr || std::freopen("/dev/null", "w", stdout) == nullptr) _exit(99);
+    if (std::freopen("/dev/null", "w", stderr) == nullptr || std::freopen("/dev/null", "w", stdout) == nullptr)
+      _exit(99);
     execv(HRAD_EXECUTABLE, argv.data());
     _exit(98);
   }
@@ -231,12 +231,13 @@ TEST(CliOutputs, TinyPatchInAHugeRoomSurvivesThePly) {
   const std::string d = dir.root().string();
   dir.write("room.mtl", "newmtl wall\nKd 0.5 0.5 0.5\nnewmtl light\nKd 0 0 0\nKe 1 1 1\n");
   // The cube [0, 1000]^3 facing inwards, and the light just below the ceiling's corner, facing down.
-  dir.write("room.obj",
-            "mtllib room.mtl\nusemtl wall\n"
-            "v 0 0 0\nv 1000 0 0\nv 1000 0 1000\nv 0 0 1000\nv 0 1000 0\nv 1000 1000 0\nv 1000 1000 1000\nv 0 1000 1000\n"
-            "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n"
-            "usemtl light\nv 999.999998 999.999 999.999998\nv 999.999999 999.999 999.999998\n"
-            "v 999.999999 999.999 999.999999\nv 999.999998 999.999 999.999999\nf 9 10 11 12\n");
+  dir.write(
+      "room.obj",
+      "mtllib room.mtl\nusemtl wall\n"
+      "v 0 0 0\nv 1000 0 0\nv 1000 0 1000\nv 0 0 1000\nv 0 1000 0\nv 1000 1000 0\nv 1000 1000 1000\nv 0 1000 1000\n"
+      "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n"
+      "usemtl light\nv 999.999998 999.999 999.999998\nv 999.999999 999.999 999.999998\n"
+      "v 999.999999 999.999 999.999999\nv 999.999998 999.999 999.999999\nf 9 10 11 12\n");
   const RunResult r = run_hrad("solve " + d + "/room.obj --quiet --method full --out " + d + "/s.ply", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Solution s = read_solution_ply(d + "/s.ply");

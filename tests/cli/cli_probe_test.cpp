@@ -66,8 +66,8 @@ double under_light(double u, double v, double h) {
 TEST(CliProbe, PointsUnderASquareLightGetHowellsFactor) {
   TempDir dir;
   write_light_over_floor(dir);
-  ASSERT_EQ(run_hrad("solve " + dir.path("lit.obj") + " --method full --quiet --out " + dir.path("s.ply"), dir).exit_code,
-            0);
+  ASSERT_EQ(
+      run_hrad("solve " + dir.path("lit.obj") + " --method full --quiet --out " + dir.path("s.ply"), dir).exit_code, 0);
   dir.write("p.csv",
             "x,y,z,nx,ny,nz\n1,0,1,0,1,0\n0.3,0,1.7,0,2,0\n1.9,0.25,0.05,0,1,0\n0,0.5,0.6,1,0,0\n3,0,-1,0,1,0\n");
   const RunResult r = run_hrad("probe " + dir.path("s.ply") + " --scene " + dir.path("lit.obj") + " --points " +
@@ -78,10 +78,10 @@ TEST(CliProbe, PointsUnderASquareLightGetHowellsFactor) {
   const std::vector<Row> rows = read_rows(dir.path("r.csv"));
   ASSERT_EQ(rows.size(), 5u);
   // (3, 0, -1): the light spans x - 3 in [-3, -1] and z + 1 in [1, 3] from the foot.
-  const double f[5] = {under_light(1, 1, kC), under_light(0.3, 1.7, kC), under_light(1.9, 0.05, kC - 0.25),
-                       howell_perpendicular_element(0.6, kA, kC - 0.5) +
-                           howell_perpendicular_element(kA - 0.6, kA, kC - 0.5),
-                       howell_b3(3, 3, kC) - howell_b3(1, 3, kC) - howell_b3(3, 1, kC) + howell_b3(1, 1, kC)};
+  const double f[5] = {
+      under_light(1, 1, kC), under_light(0.3, 1.7, kC), under_light(1.9, 0.05, kC - 0.25),
+      howell_perpendicular_element(0.6, kA, kC - 0.5) + howell_perpendicular_element(kA - 0.6, kA, kC - 0.5),
+      howell_b3(3, 3, kC) - howell_b3(1, 3, kC) - howell_b3(3, 1, kC) + howell_b3(1, 1, kC)};
   // The sideways point also sees the floor's half x > 0 (x in [0, 5], z in [-3, 5]) 0.5 below it.
   const double floor_sideways = howell_perpendicular_element(3.6, 5, 0.5) + howell_perpendicular_element(4.4, 5, 0.5);
   const bool on_floor[5] = {true, true, false, false, true};
@@ -93,8 +93,10 @@ TEST(CliProbe, PointsUnderASquareLightGetHowellsFactor) {
       const double h = num(rows[i], std::string("irradiance_") + channel[c]);
       const double exact = kE[c] * f[i] + (i == 3 ? 0.1 * floor_sideways : 0.0);
       EXPECT_LT(relative_error(h, exact), 1e-9) << "point " << i << " channel " << channel[c];
-      if (on_floor[i]) EXPECT_EQ(num(rows[i], std::string("radiosity_") + channel[c]), 0.1);
-      else EXPECT_EQ(rows[i].at(std::string("radiosity_") + channel[c]), "");
+      if (on_floor[i])
+        EXPECT_EQ(num(rows[i], std::string("radiosity_") + channel[c]), 0.1);
+      else
+        EXPECT_EQ(rows[i].at(std::string("radiosity_") + channel[c]), "");
     }
   }
 
@@ -124,8 +126,8 @@ TEST(CliProbe, PointsUnderASquareLightGetHowellsFactor) {
 TEST(CliProbe, DeclaredUnitsGiveLuxAndAnIsoluxPlot) {
   TempDir dir;
   write_light_over_floor(dir);
-  ASSERT_EQ(run_hrad("solve " + dir.path("lit.obj") + " --method full --quiet --out " + dir.path("s.ply"), dir).exit_code,
-            0);
+  ASSERT_EQ(
+      run_hrad("solve " + dir.path("lit.obj") + " --method full --quiet --out " + dir.path("s.ply"), dir).exit_code, 0);
   const double weighted = 0.265074126 * kE[0] + 0.670114631 * kE[1] + 0.064811243 * kE[2];
   for (const auto& [units, efficacy] : {std::pair<std::string, double>{"lm/m2", 1.0}, {"W/m2", 179.0}}) {
     const RunResult g = run_hrad("probe " + dir.path("s.ply") + " --scene " + dir.path("lit.obj") +
@@ -180,8 +182,8 @@ TEST(CliProbe, ClosedRoomGivesTheFurnaceClosedFormAnywhere) {
   TempDir dir;
   const double rho = 0.6, e = 2.0, b = e / (1.0 - rho);
   write_furnace_cube(dir);
-  ASSERT_EQ(run_hrad("solve " + dir.path("cube.obj") + " --method full --linear-solver lu --max-area 0.3 --quiet --out " +
-                         dir.path("s.ply"),
+  ASSERT_EQ(run_hrad("solve " + dir.path("cube.obj") +
+                         " --method full --linear-solver lu --max-area 0.3 --quiet --out " + dir.path("s.ply"),
                      dir)
                 .exit_code,
             0);
@@ -220,10 +222,11 @@ TEST(CliProbe, OccludedPointsAgreeWithTheMonteCarloReference) {
             "mtllib occ.mtl\nusemtl black\nv -3 0 -3\nv 5 0 -3\nv 5 0 5\nv -3 0 5\nf 1 4 3 2\n"
             "v 0.5 0.4 0.5\nv 1.1 0.4 0.5\nv 1.1 0.4 1.2\nv 0.5 0.4 1.2\nf 5 8 7 6\n"
             "usemtl light\nv 0 0.75 0\nv 2 0.75 0\nv 2 0.75 2\nv 0 0.75 2\nf 9 10 11 12\n");
-  ASSERT_EQ(run_hrad("solve " + dir.path("occ.obj") + " --method full --quiet --out " + dir.path("s.ply"), dir).exit_code,
-            0);
-  dir.write("p.csv", "x,y,z,nx,ny,nz\n0.8,0,0.85,0,1,0\n0.45,0,0.8,0,1,0\n1.6,0,1.6,0,1,0\n1.2,0,0.3,0,1,0\n"
-                     "0.8,0.2,1.3,0,1,0\n");
+  ASSERT_EQ(
+      run_hrad("solve " + dir.path("occ.obj") + " --method full --quiet --out " + dir.path("s.ply"), dir).exit_code, 0);
+  dir.write("p.csv",
+            "x,y,z,nx,ny,nz\n0.8,0,0.85,0,1,0\n0.45,0,0.8,0,1,0\n1.6,0,1.6,0,1,0\n1.2,0,0.3,0,1,0\n"
+            "0.8,0.2,1.3,0,1,0\n");
   const RunResult ref = run_hrad("reference " + dir.path("occ.obj") + " --points " + dir.path("p.csv") +
                                      " --samples 16384 --quiet --out " + dir.path("ref.csv"),
                                  dir);
@@ -245,7 +248,8 @@ TEST(CliProbe, OccludedPointsAgreeWithTheMonteCarloReference) {
     }
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const double h = num(rows[i], "irradiance_g"), m = num(mc[i], "irradiance_g"), se = num(mc[i], "irradiance_g_se");
-      EXPECT_LT(std::abs(h - m), 4.0 * se + 1e-12) << visibility << " point " << i << ": " << h << " vs " << m << " +- " << se;
+      EXPECT_LT(std::abs(h - m), 4.0 * se + 1e-12)
+          << visibility << " point " << i << ": " << h << " vs " << m << " +- " << se;
     }
   }
 }
@@ -255,10 +259,13 @@ TEST(CliProbe, OccludedPointsAgreeWithTheMonteCarloReference) {
 TEST(CliProbe, SolutionOfAnotherSceneIsRefused) {
   TempDir dir;
   write_furnace_cube(dir);
-  ASSERT_EQ(run_hrad("solve " + dir.path("cube.obj") + " --method full --quiet --out " + dir.path("s.ply"), dir).exit_code,
-            0);
-  const RunResult r = run_hrad("probe " + dir.path("s.ply") + " --scene notebooks_data/scenes/two_far_surfaces.obj "
-                               "--grid y,0,0,0,1,1,2,2 --quiet --out " + dir.path("r.csv"),
+  ASSERT_EQ(
+      run_hrad("solve " + dir.path("cube.obj") + " --method full --quiet --out " + dir.path("s.ply"), dir).exit_code,
+      0);
+  const RunResult r = run_hrad("probe " + dir.path("s.ply") +
+                                   " --scene notebooks_data/scenes/two_far_surfaces.obj "
+                                   "--grid y,0,0,0,1,1,2,2 --quiet --out " +
+                                   dir.path("r.csv"),
                                dir);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find(dir.path("s.ply") + ": patch id"), std::string::npos) << r.err;

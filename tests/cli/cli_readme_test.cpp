@@ -34,15 +34,19 @@ std::set<std::string> readme_options(const std::string& readme, const std::strin
 
 // The first capture of `pattern` on each line of a `--help` section ("Options:", "Subcommands:"):
 // the indented lines that follow its header, up to the next unindented line.
-std::vector<std::string> section_matches(const std::string& help, const std::string& header, const std::regex& pattern) {
+std::vector<std::string> section_matches(const std::string& help, const std::string& header,
+                                         const std::regex& pattern) {
   std::istringstream in(help);
   std::vector<std::string> found;
   bool inside = false;
   std::smatch m;
   for (std::string line; std::getline(in, line);) {
-    if (line == header) inside = true;
-    else if (!line.empty() && line[0] != ' ') inside = false;
-    else if (inside && std::regex_search(line, m, pattern)) found.push_back(m[1]);
+    if (line == header)
+      inside = true;
+    else if (!line.empty() && line[0] != ' ')
+      inside = false;
+    else if (inside && std::regex_search(line, m, pattern))
+      found.push_back(m[1]);
   }
   return found;
 }
@@ -103,7 +107,8 @@ TEST(CliReadme, ParsersReadTablesAndHelp) {
       "Usage: hrad x [OPTIONS]\n\nOptions:\n  -h,--help   Print\n  --a INT     A\n  --b-c       B\n"
       "                (continued --not-an-option)\n\nSubcommands:\n  --f  not an option\n";
   EXPECT_EQ(help_options(help), (std::set<std::string>{"--a", "--b-c"}));
-  const std::string top = "Usage: hrad\n\nOptions:\n  --version  V\n\nSubcommands:\n  info     Print\n  scene    Scene\n";
+  const std::string top =
+      "Usage: hrad\n\nOptions:\n  --version  V\n\nSubcommands:\n  info     Print\n  scene    Scene\n";
   EXPECT_EQ(help_subcommands(top), (std::vector<std::string>{"info", "scene"}));
 }
 

@@ -34,15 +34,17 @@ std::vector<std::vector<std::string>> read_rows(const std::string& text, std::st
 TEST(CliReference, PointsCsvMatchesHowellWithinFourStandardErrors) {
   TempDir dir;
   write_plates(dir);
-  const std::string common = "reference " + dir.path("plates.obj") + " --points " + dir.path("points.csv") + " --samples 4096";
+  const std::string common =
+      "reference " + dir.path("plates.obj") + " --points " + dir.path("points.csv") + " --samples 4096";
   const RunResult r = run_hrad(common + " --out " + dir.path("r.csv"), dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("rays"), std::string::npos) << r.out;
   std::string header;
   const auto rows = read_rows(slurp(dir.path("r.csv")), &header);
-  EXPECT_EQ(header,
-            "x,y,z,nx,ny,nz,face,irradiance_r,irradiance_g,irradiance_b,irradiance_r_se,irradiance_g_se,irradiance_b_se,"
-            "radiosity_r,radiosity_g,radiosity_b,radiosity_r_se,radiosity_g_se,radiosity_b_se");
+  EXPECT_EQ(
+      header,
+      "x,y,z,nx,ny,nz,face,irradiance_r,irradiance_g,irradiance_b,irradiance_r_se,irradiance_g_se,irradiance_b_se,"
+      "radiosity_r,radiosity_g,radiosity_b,radiosity_r_se,radiosity_g_se,radiosity_b_se");
   ASSERT_EQ(rows.size(), 2u);
   const double e[3] = {2.0, 1.0, 0.5};
   // Centre of the receiver: four corner rectangles 0.5 x 0.5 at distance 1.
@@ -74,8 +76,8 @@ TEST(CliReference, PointsCsvMatchesHowellWithinFourStandardErrors) {
 TEST(CliReference, FacesCsvMatchesHowellC11) {
   TempDir dir;
   write_plates(dir);
-  const RunResult r =
-      run_hrad("reference " + dir.path("plates.obj") + " --faces --samples 16384 --quiet --out " + dir.path("f.csv"), dir);
+  const RunResult r = run_hrad(
+      "reference " + dir.path("plates.obj") + " --faces --samples 16384 --quiet --out " + dir.path("f.csv"), dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   std::string header;
@@ -83,7 +85,7 @@ TEST(CliReference, FacesCsvMatchesHowellC11) {
   EXPECT_EQ(header, "face,group,area,radiosity_r,radiosity_g,radiosity_b,radiosity_r_se,radiosity_g_se,radiosity_b_se");
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[0][1], "light");
-  EXPECT_EQ(rows[0][3], "2");      // black emitter: its emission, exactly
+  EXPECT_EQ(rows[0][3], "2");  // black emitter: its emission, exactly
   EXPECT_EQ(rows[0][6], "0");
   EXPECT_EQ(rows[1][1], "receiver");
   EXPECT_EQ(std::stod(rows[1][2]), 1.0);

@@ -44,9 +44,8 @@ double cube_factor(int i, int j) {
 TEST(CliViewFactors, EveryFormatCarriesTheClosedForms) {
   TempDir dir;
   const std::string scene = dir.write("cube.obj", kCube);
-  const RunResult r = run_hrad("viewfactors " + scene + " --out " + dir.path("F.csv") + " --report " + dir.path("R.json") +
-                                   " --quiet",
-                               dir);
+  const RunResult r = run_hrad(
+      "viewfactors " + scene + " --out " + dir.path("F.csv") + " --report " + dir.path("R.json") + " --quiet", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto dense = numbers(slurp(dir.path("F.csv")), ',');
   ASSERT_EQ(dense.size(), 6u);
@@ -60,7 +59,9 @@ TEST(CliViewFactors, EveryFormatCarriesTheClosedForms) {
   EXPECT_EQ(report["per_surface"].size(), 6u);
 
   ASSERT_EQ(run_hrad("viewfactors " + scene + " --out " + dir.path("F.mtx") + " --quiet", dir).exit_code, 0);
-  ASSERT_EQ(run_hrad("viewfactors " + scene + " --format triplets --out " + dir.path("T.csv") + " --quiet", dir).exit_code, 0);
+  ASSERT_EQ(
+      run_hrad("viewfactors " + scene + " --format triplets --out " + dir.path("T.csv") + " --quiet", dir).exit_code,
+      0);
   ASSERT_EQ(run_hrad("viewfactors " + scene + " --out " + dir.path("V.txt") + " --quiet", dir).exit_code, 0);
   const std::string mtx = slurp(dir.path("F.mtx"));
   EXPECT_EQ(mtx.rfind("%%MatrixMarket matrix coordinate real general\n", 0), 0u);
@@ -83,8 +84,9 @@ TEST(CliViewFactors, BadOptionsAreOneLineErrorsWithNothingWritten) {
   TempDir dir;
   const std::string scene = dir.write("cube.obj", kCube);
   const std::string out = dir.path("F.csv");
-  for (const std::string& bad : {std::string("--by zone"), std::string("--threshold 2"), std::string("--visibility-error 0"),
-                                 std::string("--format xml"), std::string("--max-rays 3")}) {
+  for (const std::string& bad :
+       {std::string("--by zone"), std::string("--threshold 2"), std::string("--visibility-error 0"),
+        std::string("--format xml"), std::string("--max-rays 3")}) {
     const RunResult r = run_hrad("viewfactors " + scene + " --out " + out + " " + bad, dir);
     EXPECT_NE(r.exit_code, 0) << bad;
     ASSERT_EQ(r.err_lines().size(), 1u) << r.err;
@@ -110,14 +112,16 @@ TEST(CliViewFactors, Vs3AndObjGiveTheSameMatrixAndExchangeBalances) {
   const std::string scene = dir.write("cube.obj", kCube);
   ASSERT_EQ(run_hrad("viewfactors " + scene + " --write-vs3 " + dir.path("cube.vs3") + " --quiet", dir).exit_code, 0);
   const RunResult a = run_hrad("viewfactors " + scene + " --out " + dir.path("obj.txt") + " --quiet", dir);
-  const RunResult b = run_hrad("viewfactors " + dir.path("cube.vs3") + " --out " + dir.path("vs3.txt") + " --quiet", dir);
+  const RunResult b =
+      run_hrad("viewfactors " + dir.path("cube.vs3") + " --out " + dir.path("vs3.txt") + " --quiet", dir);
   ASSERT_EQ(a.exit_code, 0) << a.err;
   ASSERT_EQ(b.exit_code, 0) << b.err;
   EXPECT_EQ(slurp(dir.path("obj.txt")), slurp(dir.path("vs3.txt")));
 
-  const std::string bc = dir.write("bc.csv", "surface,temperature,heat_flux\n0,600,\n1,300,\n2,,0\n3,,0\n4,400,\n5,350,\n");
-  const RunResult x = run_hrad("viewfactors " + scene + " --out " + dir.path("F.csv") + " --boundary " + bc + " --heat " +
-                                   dir.path("Q.csv") + " --quiet",
+  const std::string bc =
+      dir.write("bc.csv", "surface,temperature,heat_flux\n0,600,\n1,300,\n2,,0\n3,,0\n4,400,\n5,350,\n");
+  const RunResult x = run_hrad("viewfactors " + scene + " --out " + dir.path("F.csv") + " --boundary " + bc +
+                                   " --heat " + dir.path("Q.csv") + " --quiet",
                                dir);
   ASSERT_EQ(x.exit_code, 0) << x.err;
   // surface,name,area,emissivity,temperature,heat_flux,heat_rate,radiosity
@@ -135,9 +139,9 @@ TEST(CliViewFactors, Vs3AndObjGiveTheSameMatrixAndExchangeBalances) {
   EXPECT_EQ(std::stod(rows[0][4]), 600.0);
 
   const std::string bad = dir.write("bad.csv", "surface,temperature,heat_flux\n0,600,\n0,300,\n");
-  const RunResult e = run_hrad("viewfactors " + scene + " --out " + dir.path("G.csv") + " --boundary " + bad + " --heat " +
-                                   dir.path("R.csv"),
-                               dir);
+  const RunResult e = run_hrad(
+      "viewfactors " + scene + " --out " + dir.path("G.csv") + " --boundary " + bad + " --heat " + dir.path("R.csv"),
+      dir);
   EXPECT_NE(e.exit_code, 0);
   EXPECT_NE(e.err.find("bad.csv:3: surface 0 was given on line 2"), std::string::npos) << e.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path("G.csv")));

@@ -87,13 +87,14 @@ TEST(CliWarnings, SolutionGivenAsASceneSaysWhatItIs) {
 
 // Every solve prints and reports where the power went (reference/power_balance.h). The closed box
 // solved by the full matrix with the analytic kernel balances (no warning, the report's residual
-// within the allowance); the same box solved hierarchically and stopped after one iteration has absorbed only the first bounces, and the lost power is a
-// warning on stderr and in the report.
+// within the allowance); the same box solved hierarchically and stopped after one iteration has absorbed only the first
+// bounces, and the lost power is a warning on stderr and in the report.
 TEST(CliWarnings, PowerThatDoesNotBalanceIsAWarning) {
   TempDir dir;
   dir.write("box.mtl", kMtl);
   const std::string obj = dir.write("box.obj", box_obj(false, "Lamp"));
-  RunResult r = run_hrad("solve " + obj + " --method full --kernel analytic --quiet --report " + dir.path("ok.json"), dir);
+  RunResult r =
+      run_hrad("solve " + obj + " --method full --kernel analytic --quiet --report " + dir.path("ok.json"), dir);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("power: emitted 0.4;"), std::string::npos) << r.out;
   EXPECT_EQ(r.err.find("does not balance power"), std::string::npos) << r.err;

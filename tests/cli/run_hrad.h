@@ -46,12 +46,14 @@ inline std::vector<std::string> csv_cells(const std::string& line) {
 /// working directory; the captured streams go to files in `scratch`.
 inline RunResult run_hrad(const std::string& args, const TempDir& scratch) {
   const std::string out = scratch.path(".stdout"), err = scratch.path(".stderr");
-  const std::string command =
-      std::string("cd '") + HRAD_SOURCE_DIR + "' && '" + HRAD_EXECUTABLE + "' " + args + " >'" + out + "' 2>'" + err + "'";
+  const std::string command = std::string("cd '") + HRAD_SOURCE_DIR + "' && '" + HRAD_EXECUTABLE + "' " + args + " >'" +
+                              out + "' 2>'" + err + "'";
   const int status = std::system(command.c_str());
   RunResult r;
-  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  else if (WIFSIGNALED(status)) r.exit_code = 128 + WTERMSIG(status);
+  if (WIFEXITED(status))
+    r.exit_code = WEXITSTATUS(status);
+  else if (WIFSIGNALED(status))
+    r.exit_code = 128 + WTERMSIG(status);
   r.out = slurp(out);
   r.err = slurp(err);
   std::filesystem::remove(out);

@@ -61,8 +61,8 @@ TEST(ProgressReporter, RateLimitedLinesWithTheRightCounts) {
   double t = 0.0;
   std::vector<std::string> lines;
   {
-    ProgressReporter p("work", 100, "items", [&](std::string_view l) { lines.emplace_back(l); }, 2.0,
-                       [&] { return t; });
+    ProgressReporter p(
+        "work", 100, "items", [&](std::string_view l) { lines.emplace_back(l); }, 2.0, [&] { return t; });
     for (int i = 0; i < 100; ++i) {
       t = i / 10.0;  // 10 s for 100 items
       p.advance();
@@ -76,8 +76,8 @@ TEST(ProgressReporter, RateLimitedLinesWithTheRightCounts) {
   EXPECT_EQ(lines[4], "work: done, 100 items in 9.9 s");
 
   lines.clear();
-  ProgressReporter quick("quick", 10, "items", [&](std::string_view l) { lines.emplace_back(l); }, 2.0,
-                         [&] { return 0.5; });
+  ProgressReporter quick(
+      "quick", 10, "items", [&](std::string_view l) { lines.emplace_back(l); }, 2.0, [&] { return 0.5; });
   quick.advance(10);
   quick.finish();
   EXPECT_TRUE(lines.empty());

@@ -32,11 +32,11 @@ Scene box(bool outward, bool light_up, Rgb light_emission, std::string light_nam
   s.materials = {{"white", Rgb::Constant(0.5), Rgb::Zero()}, {light_name, Rgb::Constant(0.5), light_emission}};
   const Vec3 o(0, 0, 0), x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
   // Each quad below is counter-clockwise seen from inside the box.
-  s.patches = {quad(o, z, x + z, x, 0, outward),              // floor y = 0, normal +y
-               quad(y, y + x, y + x + z, y + z, 0, outward),  // ceiling, normal -y
-               quad(o, x, x + y, y, 0, outward),              // z = 0, normal +z
-               quad(z, z + y, z + x + y, z + x, 0, outward),  // z = 1, normal -z
-               quad(o, y, y + z, z, 0, outward),              // x = 0, normal +x
+  s.patches = {quad(o, z, x + z, x, 0, outward),               // floor y = 0, normal +y
+               quad(y, y + x, y + x + z, y + z, 0, outward),   // ceiling, normal -y
+               quad(o, x, x + y, y, 0, outward),               // z = 0, normal +z
+               quad(z, z + y, z + x + y, z + x, 0, outward),   // z = 1, normal -z
+               quad(o, y, y + z, z, 0, outward),               // x = 0, normal +x
                quad(x, x + z, x + y + z, x + y, 0, outward)};  // x = 1, normal -x
   const double h = 0.99;
   s.patches.push_back(quad(Vec3(0.4, h, 0.4), Vec3(0.6, h, 0.4), Vec3(0.6, h, 0.6), Vec3(0.4, h, 0.6), 1, light_up));
@@ -57,7 +57,8 @@ TEST(SceneChecks, ASoundBoxHasNoWarnings) {
 TEST(SceneChecks, OutwardNormalsAreFlagged) {
   // Every wall faces out: nothing lies in front of any wall (6 of 7 patches, 6 of 7 units of area).
   const std::vector<std::string> w = scene_warnings(box(true, false, Rgb::Constant(10)));
-  EXPECT_TRUE(any_contains(w, "6 of 7 patches (86% of the area) have no other face in front")) << (w.empty() ? "" : w[0]);
+  EXPECT_TRUE(any_contains(w, "6 of 7 patches (86% of the area) have no other face in front"))
+      << (w.empty() ? "" : w[0]);
   EXPECT_TRUE(any_contains(w, "flip them"));
 }
 

@@ -11,7 +11,7 @@ TEST(ToneMap, SrgbCurveAtKnownPoints) {
   EXPECT_EQ(srgb_encode(0.0), 0.0);
   EXPECT_NEAR(srgb_encode(1.0), 1.0, 1e-12);
   EXPECT_NEAR(srgb_encode(0.002), 12.92 * 0.002, 1e-15);  // linear segment
-  EXPECT_NEAR(srgb_encode(0.18), 0.4613561295, 1e-9);   // 1.055*0.18^(1/2.4)-0.055
+  EXPECT_NEAR(srgb_encode(0.18), 0.4613561295, 1e-9);     // 1.055*0.18^(1/2.4)-0.055
   // The two pieces meet (continuity at the breakpoint, to 1e-4 as in the standard).
   EXPECT_NEAR(12.92 * 0.0031308, 1.055 * std::pow(0.0031308, 1 / 2.4) - 0.055, 1e-4);
 }
@@ -29,8 +29,8 @@ Solution strip(const std::vector<double>& luminances, const std::vector<double>&
   double x = 0.0;
   for (std::size_t i = 0; i < luminances.size(); ++i) {
     const int b = static_cast<int>(s.vertices.size());
-    s.vertices.insert(s.vertices.end(), {Vec3(x, 0, 0), Vec3(x + widths[i], 0, 0), Vec3(x + widths[i], 1, 0),
-                                         Vec3(x, 1, 0)});
+    s.vertices.insert(s.vertices.end(),
+                      {Vec3(x, 0, 0), Vec3(x + widths[i], 0, 0), Vec3(x + widths[i], 1, 0), Vec3(x, 1, 0)});
     s.vertex_radiosity.insert(s.vertex_radiosity.end(), 4, Rgb::Constant(luminances[i]));
     s.faces.push_back({b, b + 1, b + 2, b + 3});
     s.face_patch.push_back(static_cast<int>(i));

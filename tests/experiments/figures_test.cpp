@@ -15,7 +15,9 @@
 namespace hrad {
 namespace {
 
-Scene bundled(const std::string& name) { return read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/" + name); }
+Scene bundled(const std::string& name) {
+  return read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/" + name);
+}
 
 // A CSV as a header and rows of cells (no quoting: hrad's CSVs have none).
 struct Csv {
@@ -65,9 +67,9 @@ TEST(Figures, CostIsTheWorkTheSolvesCounted) {
   o.substructure_counts = {16, 64, 256};
   o.aeps_fractions = {3e-2, 1e-2, 3e-3};
   const std::vector<CostRow> rows = cost_rows(scene, o);
-  const Csv csv = parse(cost_csv(rows), {"method", "parameter", "value", "patches", "elements", "links",
-                                         "element_factor_evaluations", "point_factor_evaluations", "gather_terms",
-                                         "segment_queries", "seconds"});
+  const Csv csv = parse(cost_csv(rows),
+                        {"method", "parameter", "value", "patches", "elements", "links", "element_factor_evaluations",
+                         "point_factor_evaluations", "gather_terms", "segment_queries", "seconds"});
   ASSERT_EQ(csv.rows.size(), 9u);
   const double patches = double(scene.patches.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {

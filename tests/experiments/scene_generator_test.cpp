@@ -32,7 +32,8 @@ TEST(SceneGenerator, SameSeedSameSceneOtherSeedOtherScene) {
   for (std::size_t i = 0; i < a.faces.size(); ++i)
     for (int k = 0; k < 4; ++k) ASSERT_EQ(a.faces[i].vertices[k], b.faces[i].vertices[k]);
   bool differs = a.faces.size() != c.faces.size();
-  for (std::size_t i = 0; !differs && i < a.faces.size(); ++i) differs = a.faces[i].vertices[0] != c.faces[i].vertices[0];
+  for (std::size_t i = 0; !differs && i < a.faces.size(); ++i)
+    differs = a.faces[i].vertices[0] != c.faces[i].vertices[0];
   EXPECT_TRUE(differs);
 }
 
@@ -73,7 +74,7 @@ TEST(SceneGenerator, RoomTilesCoverTheBoundaryFacingInAndFurnitureIsClosedBoxesI
   const Scene s = to_scene(g);
   const Vec3 size = g.room_size;
   // Room tiles: the six sides' areas exactly, each tile's normal pointing into the room.
-  std::map<int, double> side_area;  // key: axis * 2 + (at the far side)
+  std::map<int, double> side_area;                        // key: axis * 2 + (at the far side)
   std::map<std::string, std::pair<Vec3, double>> closed;  // group: (vector area, volume)
   for (const Patch& p : s.patches) {
     const bool room = p.group == "floor" || p.group == "ceiling" || p.group == "walls" || p.group == "lights";

@@ -19,8 +19,8 @@ namespace hrad {
 namespace {
 
 TEST(SweepGathered, FurnaceRunsGatherTheClosedFormEverywhere) {
-  const Scene box = test::make_box(4, 2.5, 5, {test::material(Rgb(0.8, 0.6, 0.4), Rgb(2.0, 1.0, 3.0))},
-                                   {0, 0, 0, 0, 0, 0}, true);
+  const Scene box =
+      test::make_box(4, 2.5, 5, {test::material(Rgb(0.8, 0.6, 0.4), Rgb(2.0, 1.0, 3.0))}, {0, 0, 0, 0, 0, 0}, true);
   SweepOptions o;
   o.element_counts = {24, 48};
   o.patch_counts = {6};

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "hrad/geometry/polygon.h"
 #include "howell.h"
+#include "hrad/geometry/polygon.h"
 #include "test_geometry.h"
 
 namespace hrad::test {
@@ -16,7 +16,8 @@ const double kDistances[] = {1e-3, 0.01, 0.1, 0.5, 1.0, 3.0, 10.0, 100.0, 1e3};
 
 // C-11 plates: from = [0,a]x[0,b] at z = 0 facing +z, to = the same at z = c facing -z.
 std::pair<Polygon, Polygon> c11_pair(double a, double b, double c) {
-  return {rectangle(Vec3::Zero(), Vec3(a, 0, 0), Vec3(0, b, 0)), rectangle(Vec3(0, 0, c), Vec3(0, b, 0), Vec3(a, 0, 0))};
+  return {rectangle(Vec3::Zero(), Vec3(a, 0, 0), Vec3(0, b, 0)),
+          rectangle(Vec3(0, 0, c), Vec3(0, b, 0), Vec3(a, 0, 0))};
 }
 
 // C-14: common edge [0,l] on the x axis; from in z = 0 (width w along y, facing +z), to in y = 0
@@ -47,7 +48,8 @@ TEST(PolygonToPolygon, HowellC11ParallelRectangles) {
       // Any rigid motion of the pair.
       const Eigen::Matrix3d rot = random_rotation(rng);
       const Vec3 shift = 10.0 * random_unit(rng);
-      EXPECT_LE(relative_error(polygon_to_polygon(moved(from, rot, shift), moved(to, rot, shift)).from_to, exact), 1e-11)
+      EXPECT_LE(relative_error(polygon_to_polygon(moved(from, rot, shift), moved(to, rot, shift)).from_to, exact),
+                1e-11)
           << "moved a=" << a << " c=" << c;
     }
 }

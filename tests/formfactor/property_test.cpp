@@ -37,7 +37,9 @@ Polygon hinge_leaf(std::mt19937_64& rng, double len) {
 int g_compared = 0, g_skipped = 0;
 struct ConvergedForMostPairs {
   ConvergedForMostPairs() { g_compared = g_skipped = 0; }
-  ~ConvergedForMostPairs() { EXPECT_GE(g_compared, 3 * g_skipped) << g_compared << " compared, " << g_skipped << " skipped"; }
+  ~ConvergedForMostPairs() {
+    EXPECT_GE(g_compared, 3 * g_skipped) << g_compared << " compared, " << g_skipped << " skipped";
+  }
 };
 
 // The invariants every pair must satisfy, and the value against the quadrature reference.
@@ -79,7 +81,8 @@ TEST(FormFactorProperties, SharedEdges) {
     for (Vec3& v : from) v.y() = -v.y();
     from = reversed(from);
     const double alpha = angle(rng);
-    const Polygon to = moved(hinge_leaf(rng, len), Eigen::AngleAxisd(-alpha, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero());
+    const Polygon to =
+        moved(hinge_leaf(rng, len), Eigen::AngleAxisd(-alpha, Vec3::UnitX()).toRotationMatrix(), Vec3::Zero());
     check_pair(from, to, 1e-6, "shared edge " + std::to_string(k) + " alpha " + std::to_string(alpha));
   }
 }
@@ -139,9 +142,9 @@ TEST(FormFactorProperties, Slivers) {
   for (int k = 0; k < 4; ++k) {
     const Polygon from = rectangle(Vec3::Zero(), Vec3(1.0, 0, 0), Vec3(0, 1e-6, 0));
     const Eigen::Matrix3d r = random_rotation(rng);
-    const Polygon to = moved(k % 2 ? rectangle(Vec3::Zero(), Vec3(1e-6, 0, 0), Vec3(0, 1.0, 0))
-                                   : random_convex(rng, 4, 0.5, 0.5),
-                             r, Vec3(u(rng), u(rng), 0.5 + std::abs(u(rng))));
+    const Polygon to =
+        moved(k % 2 ? rectangle(Vec3::Zero(), Vec3(1e-6, 0, 0), Vec3(0, 1.0, 0)) : random_convex(rng, 4, 0.5, 0.5), r,
+              Vec3(u(rng), u(rng), 0.5 + std::abs(u(rng))));
     check_pair(from, to, 1e-6, "sliver " + std::to_string(k));
   }
 }
@@ -194,4 +197,3 @@ TEST(FormFactorProperties, ALooserToleranceIsKept) {
 
 }  // namespace
 }  // namespace hrad::test
-

@@ -4,10 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include "howell.h"
 #include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/formfactor/receiver_gauss_factor.h"
 #include "hrad/geometry/polygon.h"
-#include "howell.h"
 #include "test_geometry.h"
 
 namespace hrad::test {
@@ -51,15 +51,16 @@ TEST(ReceiverGaussFactor, ClosureInABoxWithTJunctions) {
   std::vector<Polygon> others;
   auto split = [&](const Vec3& o, const Vec3& u, const Vec3& v, int n, int m) {
     for (int i = 0; i < n; ++i)
-      for (int j = 0; j < m; ++j) others.push_back(rectangle(o + (double(i) / n) * u + (double(j) / m) * v, u / n, v / m));
+      for (int j = 0; j < m; ++j)
+        others.push_back(rectangle(o + (double(i) / n) * u + (double(j) / m) * v, u / n, v / m));
   };
   split(z, y, x, 2, 5);             // ceiling, -z
   split(Vec3::Zero(), z, x, 1, 3);  // y = 0, +y
   split(y, x, z, 4, 1);             // y = Ly, -y
   split(Vec3::Zero(), y, z, 2, 2);  // x = 0, +x
   split(x, z, y, 3, 3);             // x = Lx, -x
-  for (const Polygon& element : {rectangle(Vec3(0.2, 0.1, 0), 0.3 * x, 0.2 * y),
-                                 Polygon{{0, 0, 0}, {0.4, 0.1, 0}, {0.1, 0.5, 0}}}) {
+  for (const Polygon& element :
+       {rectangle(Vec3(0.2, 0.1, 0), 0.3 * x, 0.2 * y), Polygon{{0, 0, 0}, {0.4, 0.1, 0}, {0.1, 0.5, 0}}}) {
     double sum = 0.0;
     for (const Polygon& o : others) sum += receiver_gauss_factor(element, o);
     EXPECT_NEAR(sum, 1.0, 1e-12) << element.size();
@@ -79,8 +80,8 @@ TEST(ReceiverFactorByDistance, CentroidRuleErrorStaysBelowTheQuarterSquaredRatio
         const Polygon receiver = rectangle(Vec3(offset, 0.3, 0), u, v);
         const double exact = receiver_gauss_factor(receiver, source);
         const double f = receiver_factor_by_distance(receiver, source, 0.1);
-        const double gap = (polygon_centroid(receiver) - polygon_centroid(source)).norm() -
-                           0.5 * (u + v).norm() - std::sqrt(0.5);
+        const double gap =
+            (polygon_centroid(receiver) - polygon_centroid(source)).norm() - 0.5 * (u + v).norm() - std::sqrt(0.5);
         const double ratio = (u + v).norm() / gap;
         if (ratio <= 0.1) {
           ++centroid;

@@ -2,8 +2,8 @@
 // the Monte Carlo estimate lies within a few standard errors and its error shrinks like 1/sqrt(N).
 #include <gtest/gtest.h>
 
-#include "hrad/formfactor/quadrature_form_factor.h"
 #include "howell.h"
+#include "hrad/formfactor/quadrature_form_factor.h"
 #include "support/monte_carlo_form_factor.h"
 #include "test_geometry.h"
 

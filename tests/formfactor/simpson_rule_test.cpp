@@ -28,7 +28,9 @@ double simpson(std::span<const Vec3> poly, double (*f)(const Vec3&)) {
   return sum;
 }
 
-double cubic(const Vec3& x) { return 1.0 + x.x() - 2.0 * x.y() + x.x() * x.y() + x.x() * x.x() * x.y() - x.y() * x.y() * x.y(); }
+double cubic(const Vec3& x) {
+  return 1.0 + x.x() - 2.0 * x.y() + x.x() * x.y() + x.x() * x.x() * x.y() - x.y() * x.y() * x.y();
+}
 
 TEST(SimpsonRule, IntegratesCubicsOnATriangleAndOnAnAffineQuad) {
   // On a parallelogram the bilinear map is affine, so a cubic in x is a bicubic in (u, v): exact.

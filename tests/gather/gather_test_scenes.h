@@ -16,7 +16,7 @@ namespace hrad::test {
 /// B(centroid, patch) (patch_radiosity and vertex_radiosity are left as the hierarchy made them:
 /// a gather reads only the leaves).
 inline Solution leaves_with(const Scene& scene, double max_area, const std::function<Rgb(const Vec3&, int)>& radiosity,
-                           const std::function<double(int)>& area_scale = {}) {
+                            const std::function<double(int)>& area_scale = {}) {
   ElementHierarchy h(scene);
   for (int p = 0; p < static_cast<int>(scene.patches.size()); ++p)
     h.subdivide_uniform(h.root(p), max_area * (area_scale ? area_scale(p) : 1.0));

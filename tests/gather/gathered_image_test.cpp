@@ -128,7 +128,6 @@ TEST(GatheredImage, SameBitsAtOneAndTwoThreads) {
   EXPECT_GT(one.work.rays, 0u);  // the block casts shadows: rays were cast and had to agree
 }
 
-
 // A probe (gather/probes.h) at the point a pixel sees gets the value the image gathered there: with
 // one sample per pixel each pixel's ray passes through its centre, so the floor point it meets
 // is found here by the ray's own intersection with the floor (y = 0), independently of the
@@ -142,7 +141,8 @@ TEST(GatheredImage, ProbesAtThePixelsPointsGetThePixelsValues) {
   const double bx0 = 1.0, bx1 = 2.0, by1 = 1.2, bz0 = 1.5, bz1 = 2.5;
   test::add_block(box, bx0, bx1, 0.0, by1, bz0, bz1, 0);
   const Solution leaves = test::leaves_with(box, 0.25, [&](const Vec3& y, int p) {
-    return box.material_of(box.patches[static_cast<std::size_t>(p)]).emission + Rgb(0.2 + 0.1 * y.x(), 0.3, 0.1 * y.z());
+    return box.material_of(box.patches[static_cast<std::size_t>(p)]).emission +
+           Rgb(0.2 + 0.1 * y.x(), 0.3, 0.1 * y.z());
   });
   LeafGatherOptions go;
   go.visibility = VisibilityMode::exact;
@@ -195,7 +195,7 @@ TEST(GatheredImage, ProbesAtThePixelsPointsGetThePixelsValues) {
     darkest = std::min(darkest, seen[1]);
     brightest = std::max(brightest, seen[1]);
   }
-  EXPECT_LT(darkest, 0.8 * brightest);  // the block's shadow is among the pixels compared
+  EXPECT_LT(darkest, 0.8 * brightest);         // the block's shadow is among the pixels compared
   EXPECT_GT(gather.work().exact_regions, 0u);  // and so is its penumbra
 }
 

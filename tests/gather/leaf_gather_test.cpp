@@ -29,10 +29,12 @@ using test::uniform_leaves;
 TEST(LeafGather, PointUnderASquareEmitterGathersHowellsFactor) {
   const double a = 2.0, c = 0.75, e = 3.0;
   Scene s;
-  s.materials = {material(Rgb::Constant(0.5), Rgb::Zero(), "floor"), material(Rgb::Zero(), Rgb(e, 2 * e, 0.5 * e), "light")};
+  s.materials = {material(Rgb::Constant(0.5), Rgb::Zero(), "floor"),
+                 material(Rgb::Zero(), Rgb(e, 2 * e, 0.5 * e), "light")};
   add_polygon(s, {{-3, 0, -3}, {5, 0, -3}, {5, 0, 5}, {-3, 0, 5}}, Vec3::UnitY(), 0);
   add_polygon(s, {{0, c, 0}, {a, c, 0}, {a, c, a}, {0, c, a}}, -Vec3::UnitY(), 1);
-  const Solution leaves = leaves_with(s, 0.05, [&](const Vec3&, int p) { return p == 1 ? Rgb(e, 2 * e, 0.5 * e) : Rgb::Constant(0.1); });
+  const Solution leaves =
+      leaves_with(s, 0.05, [&](const Vec3&, int p) { return p == 1 ? Rgb(e, 2 * e, 0.5 * e) : Rgb::Constant(0.1); });
   for (double tolerance : {0.0, 1e-3}) {
     LeafGatherOptions o;
     o.tolerance = tolerance;
@@ -41,7 +43,8 @@ TEST(LeafGather, PointUnderASquareEmitterGathersHowellsFactor) {
       const double f = test::howell_b3(u, v, c) + test::howell_b3(a - u, v, c) + test::howell_b3(u, a - v, c) +
                        test::howell_b3(a - u, a - v, c);
       // On the floor patch, and the same point in space (no patch: it is classified, not paired).
-      const std::vector<GatherPoint> points = {{Vec3(u, 0, v), Vec3::UnitY(), 0}, {Vec3(u, 0.25, v), Vec3::UnitY(), -1}};
+      const std::vector<GatherPoint> points = {{Vec3(u, 0, v), Vec3::UnitY(), 0},
+                                               {Vec3(u, 0.25, v), Vec3::UnitY(), -1}};
       const std::vector<Rgb> h = gather.gather(points);
       EXPECT_LT(test::relative_error(h[0][1], 2 * e * f), 1e-9) << u << "," << v;
       const double f_above = test::howell_b3(u, v, c - 0.25) + test::howell_b3(a - u, v, c - 0.25) +
@@ -59,8 +62,8 @@ TEST(LeafGather, PointUnderASquareEmitterGathersHowellsFactor) {
 TEST(LeafGather, ClosedRoomGathersTheClosedFormAtAnyPointFacingAnyWay) {
   const double rho = 0.6, e = 1.5, b = e / (1 - rho);
   const Scene box = make_box(3, 2.5, 4, {material(Rgb::Constant(rho), Rgb::Constant(e))}, {0, 0, 0, 0, 0, 0}, true);
-  const Solution leaves = leaves_with(box, 0.2, [&](const Vec3&, int) { return Rgb::Constant(b); },
-                                      [](int p) { return p % 2 ? 1.0 : 0.1; });
+  const Solution leaves = leaves_with(
+      box, 0.2, [&](const Vec3&, int) { return Rgb::Constant(b); }, [](int p) { return p % 2 ? 1.0 : 0.1; });
   detail::Rng rng(7);
   std::vector<GatherPoint> points;
   for (int i = 0; i < 40; ++i) {
@@ -80,7 +83,8 @@ TEST(LeafGather, ClosedRoomGathersTheClosedFormAtAnyPointFacingAnyWay) {
     const std::vector<Rgb> h = gather.gather(points);
     for (std::size_t i = 0; i < points.size(); ++i) {
       EXPECT_LT(test::relative_error(h[i][0], b), 1e-9) << i;
-      if (points[i].patch >= 0) EXPECT_LT(test::relative_error(gather.radiosity(points[i].patch, h[i])[0], b), 1e-9) << i;
+      if (points[i].patch >= 0)
+        EXPECT_LT(test::relative_error(gather.radiosity(points[i].patch, h[i])[0], b), 1e-9) << i;
     }
   }
 }
@@ -103,7 +107,8 @@ TEST(LeafGather, BarnesHutStaysWithinItsBoundOfTheLeafByLeafGather) {
     for (int k = 0; k < 6; ++k) {
       const Patch& patch = box.patches[p];
       const double s = rng.uniform(), t = rng.uniform();
-      const Vec3 x = patch.vertices[0] + s * (patch.vertices[1] - patch.vertices[0]) + t * (patch.vertices[3] - patch.vertices[0]);
+      const Vec3 x =
+          patch.vertices[0] + s * (patch.vertices[1] - patch.vertices[0]) + t * (patch.vertices[3] - patch.vertices[0]);
       points.push_back({x, patch.normal, static_cast<int>(p)});
     }
   LeafGatherOptions exact;
@@ -149,8 +154,7 @@ TEST(LeafGather, OccludedRoomAgreesWithExactVisibility) {
   const LeafGather grouped(box, leaves, o);
   std::vector<double> bound;
   const std::vector<Rgb> h = grouped.gather_with_bounds(points, &bound);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    EXPECT_LE((h[i] - exact[i]).abs().maxCoeff(), bound[i] + 1e-12) << i;
+  for (std::size_t i = 0; i < points.size(); ++i) EXPECT_LE((h[i] - exact[i]).abs().maxCoeff(), bound[i] + 1e-12) << i;
   // Sampled visibility, 256 points per partly visible leaf (kernel-weighted fraction): within 1%.
   LeafGatherOptions sampled;
   sampled.tolerance = 0.0;
@@ -168,7 +172,8 @@ TEST(LeafGather, OccludedRoomAgreesWithExactVisibility) {
 TEST(LeafGather, PartlyVisibleNodesAreSampledLeafByLeaf) {
   Scene box = make_box(3, 2.5, 4, {material(Rgb::Constant(0.5), Rgb::Zero())}, {0, 0, 0, 0, 0, 0});
   add_block(box, 1.0, 2.0, 0.8, 1.4, 1.5, 2.5, 0);
-  const Solution leaves = leaves_with(box, 0.1, [](const Vec3&, int p) { return Rgb(1.0 + 0.1 * p, 1.0, 2.0 - 0.05 * p); });
+  const Solution leaves =
+      leaves_with(box, 0.1, [](const Vec3&, int p) { return Rgb(1.0 + 0.1 * p, 1.0, 2.0 - 0.05 * p); });
   const std::vector<GatherPoint> points = {{Vec3(1.4, 0, 2.1), Vec3::UnitY(), 0},
                                            {Vec3(0.9, 0, 1.3), Vec3::UnitY(), 0},
                                            {Vec3(1.6, 0.5, 1.2), Vec3(0.2, 1, 0.3).normalized(), -1}};
@@ -184,8 +189,8 @@ TEST(LeafGather, PartlyVisibleNodesAreSampledLeafByLeaf) {
     const std::vector<Rgb> h = grouped.gather(points);
     for (std::size_t i = 0; i < points.size(); ++i)
       EXPECT_LT((h[i] - reference[i]).abs().maxCoeff(), 1e-12 * reference[i].maxCoeff()) << classify << " " << i;
-    EXPECT_EQ(grouped.work().rays, by_leaf.work().rays) << classify;  // the same samples
-    EXPECT_GT(grouped.work().rays, 0u) << classify;                    // some leaf is partly visible
+    EXPECT_EQ(grouped.work().rays, by_leaf.work().rays) << classify;                      // the same samples
+    EXPECT_GT(grouped.work().rays, 0u) << classify;                                       // some leaf is partly visible
     EXPECT_LT(grouped.work().nodes_gathered, by_leaf.work().nodes_gathered) << classify;  // and some grouping happened
   }
 }
@@ -241,8 +246,9 @@ TEST(LeafGather, SamePointSameValueInAnyBatch) {
 // finds its region, every region is tiled, and each root's mean is its patch's area mean.
 TEST(LeafQuadtrees, RebuildTheHierarchyFromItsLeaves) {
   const Scene box = make_box(3, 2.5, 4, {material(Rgb::Constant(0.5), Rgb::Zero())}, {0, 0, 0, 0, 0, 0}, true);
-  const Solution leaves = leaves_with(box, 0.05, [](const Vec3& y, int) { return Rgb(1 + y.x(), 1 + y.y(), 1 + y.z()); },
-                                      [](int p) { return 1.0 + p; });
+  const Solution leaves = leaves_with(
+      box, 0.05, [](const Vec3& y, int) { return Rgb(1 + y.x(), 1 + y.y(), 1 + y.z()); },
+      [](int p) { return 1.0 + p; });
   const detail::LeafQuadtrees trees(box, leaves);
   EXPECT_EQ(trees.unplaced_leaves(), 0u);
   std::size_t leaf_nodes = 0;

@@ -149,7 +149,8 @@ TEST(ClosedBoxes, ClusterLinksLetNoLightOutOfACrateLitFromInside) {
 // Control: with clustering, a box with an opening in its lid lets light in.
 TEST(ClosedBoxes, ClusterLinksLetLightThroughAnOpening) {
   const Case& c = kClusteredCases[0];
-  LeakScene s = test::box_above_ground(c.size, 0.25 * c.size.z(), 1.75, c.cells, test::leak_frame(c.frame, c.shift), c.seed);
+  LeakScene s =
+      test::box_above_ground(c.size, 0.25 * c.size.z(), 1.75, c.cells, test::leak_frame(c.frame, c.shift), c.seed);
   test::open_box(s, s.inside.size() - 3);
   Solution sol;
   solve(s.scene, clustered(), &sol);

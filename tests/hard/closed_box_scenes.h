@@ -144,14 +144,16 @@ inline LeakScene box_above_ground(const Vec3& size, double lift, double ground, 
   const double g = dyadic(ground * size.maxCoeff());
   const Vec3 c(0.5 * size.x(), 0.5 * size.y(), -dyadic(lift));
   s.around.push_back(add_leak_patch(
-      s.scene, {frame(c + Vec3(-g, -g, 0)), frame(c + Vec3(g, -g, 0)), frame(c + Vec3(g, g, 0)), frame(c + Vec3(-g, g, 0))},
+      s.scene,
+      {frame(c + Vec3(-g, -g, 0)), frame(c + Vec3(g, -g, 0)), frame(c + Vec3(g, g, 0)), frame(c + Vec3(-g, g, 0))},
       kGround));
   add_leak_box(s, size, cells, frame, rng);
   const double h = dyadic(2.0 * size.maxCoeff());
-  add_leak_patch(s.scene,
-                 {frame(Vec3(-h, -h, 2 * h)), frame(Vec3(-h, dyadic(0.3 * h), dyadic(2.2 * h))),
-                  frame(Vec3(dyadic(0.2 * h), dyadic(0.3 * h), dyadic(2.2 * h))), frame(Vec3(dyadic(0.2 * h), -h, 2 * h))},
-                 kLight);
+  add_leak_patch(
+      s.scene,
+      {frame(Vec3(-h, -h, 2 * h)), frame(Vec3(-h, dyadic(0.3 * h), dyadic(2.2 * h))),
+       frame(Vec3(dyadic(0.2 * h), dyadic(0.3 * h), dyadic(2.2 * h))), frame(Vec3(dyadic(0.2 * h), -h, 2 * h))},
+      kLight);
   return s;
 }
 
@@ -162,7 +164,8 @@ inline LeakScene crate_in_room(const Vec3& size, double room, int cells, const L
   LeakScene s;
   s.scene = leak_materials();
   const double r = dyadic(room * size.maxCoeff());
-  const Vec3 lo(0.5 * size.x() - r, 0.5 * size.y() - r, -0.5 * size.z()), hi(0.5 * size.x() + r, 0.5 * size.y() + r, 2 * r);
+  const Vec3 lo(0.5 * size.x() - r, 0.5 * size.y() - r, -0.5 * size.z()),
+      hi(0.5 * size.x() + r, 0.5 * size.y() + r, 2 * r);
   const Vec3 centre = 0.5 * (lo + hi);
   auto wall = [&](std::vector<Vec3> v) {
     const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);

@@ -53,7 +53,7 @@ std::vector<Vec3> square(const Vec3& o, const Vec3& u, const Vec3& v) { return {
 TEST(HardCases, NearlyCoplanarAdjacentPatches) {
   for (double eps : {1e-2, 1e-4, 1e-6, 1e-8}) {
     const auto a = square({0, 0, 0}, {0, 0, 1}, {1, 0, 0});  // y = 0, normal +y
-    const Vec3 dir(-std::cos(eps), std::sin(eps), 0);         // the other square bends up by eps
+    const Vec3 dir(-std::cos(eps), std::sin(eps), 0);        // the other square bends up by eps
     const auto b = square({0, 0, 0}, dir, {0, 0, 1});
     const PairFormFactor f = polygon_to_polygon(a, b);
     ASSERT_TRUE(std::isfinite(f.from_to) && std::isfinite(f.to_from)) << eps;
@@ -72,12 +72,11 @@ TEST(HardCases, PatchesMeetingAtVerySmallAngles) {
   for (double alpha : {1e-1, 1e-2, 1e-3, 1e-4}) {
     const Vec3 p0(0, 0, 0), p1(0, 0, 1), a1(1, 0, 0), b1(std::cos(alpha), std::sin(alpha), 0);
     // Interior is the thin wedge between the plates; fronts face into it.
-    std::vector<std::vector<Vec3>> faces = {
-        {p0, a1, a1 + p1, p1},        // lower plate
-        {p0, p1, b1 + p1, b1},        // upper plate
-        {a1, b1, b1 + p1, a1 + p1},   // closing strip
-        {p0, b1, a1},                 // cap z = 0
-        {p1, a1 + p1, b1 + p1}};      // cap z = 1
+    std::vector<std::vector<Vec3>> faces = {{p0, a1, a1 + p1, p1},       // lower plate
+                                            {p0, p1, b1 + p1, b1},       // upper plate
+                                            {a1, b1, b1 + p1, a1 + p1},  // closing strip
+                                            {p0, b1, a1},                // cap z = 0
+                                            {p1, a1 + p1, b1 + p1}};     // cap z = 1
     const Vec3 inside = (a1 + b1) / 3 + Vec3(0, 0, 0.5);
     for (auto& f : faces)
       if (newell_normal(f).dot(inside - f[0]) < 0) std::reverse(f.begin(), f.end());
@@ -116,8 +115,8 @@ TEST(HardCases, SliverPatchesAspect1e6) {
 TEST(HardCases, NearCoincidentParallelPatches) {
   for (double scale : {1e-8, 1.0, 1e8}) {
     const double gap = 1e-9 * scale;
-    const auto a = square({0, 0, 0}, {0, 0, scale}, {scale, 0, 0});          // faces +y
-    const auto b = square({0, gap, 0}, {scale, 0, 0}, {0, 0, scale});        // faces -y
+    const auto a = square({0, 0, 0}, {0, 0, scale}, {scale, 0, 0});    // faces +y
+    const auto b = square({0, gap, 0}, {scale, 0, 0}, {0, 0, scale});  // faces -y
     const PairFormFactor f = polygon_to_polygon(a, b);
     EXPECT_NEAR(f.from_to, test::howell_c11(1, 1, 1e-9), 1e-9) << scale;
     EXPECT_LE(f.from_to, 1.0);
@@ -135,10 +134,10 @@ TEST(HardCases, SceneSpanning1e3To1e3) {
   const auto wall = [&](std::vector<Vec3> v) { add_polygon(s, v, c - polygon_centroid(v), 0); };
   const double m = L / 2;  // the tiny square sits at (m, 0, m)
   wall(square({m, 0, m}, {t, 0, 0}, {0, 0, t}));
-  wall(square({0, 0, 0}, {m, 0, 0}, {0, 0, L}));                   // x < m
-  wall(square({m + t, 0, 0}, {L - m - t, 0, 0}, {0, 0, L}));       // x > m + t
-  wall(square({m, 0, 0}, {t, 0, 0}, {0, 0, m}));                   // strip below
-  wall(square({m, 0, m + t}, {t, 0, 0}, {0, 0, L - m - t}));       // strip above
+  wall(square({0, 0, 0}, {m, 0, 0}, {0, 0, L}));              // x < m
+  wall(square({m + t, 0, 0}, {L - m - t, 0, 0}, {0, 0, L}));  // x > m + t
+  wall(square({m, 0, 0}, {t, 0, 0}, {0, 0, m}));              // strip below
+  wall(square({m, 0, m + t}, {t, 0, 0}, {0, 0, L - m - t}));  // strip above
   wall(square({0, L, 0}, {L, 0, 0}, {0, 0, L}));
   wall(square({0, 0, 0}, {0, L, 0}, {0, 0, L}));
   wall(square({L, 0, 0}, {0, L, 0}, {0, 0, L}));
@@ -172,7 +171,8 @@ void expect_scale_invariant(const Scene& scene, std::initializer_list<double> sc
       for (std::size_t f = 0; f < unit.face_radiosity.size(); ++f)
         worst = std::max(worst, (sol.face_radiosity[f] - unit.face_radiosity[f]).abs().maxCoeff() /
                                     unit.face_radiosity[f].abs().maxCoeff());
-      EXPECT_LT(worst, method == Method::kHierarchical ? hierarchical_bound : 1e-9) << to_string(method) << " scale " << k;
+      EXPECT_LT(worst, method == Method::kHierarchical ? hierarchical_bound : 1e-9)
+          << to_string(method) << " scale " << k;
     }
   }
 }
@@ -223,7 +223,8 @@ TEST(HardCases, Reflectance0999ClosedRoom) {
     EXPECT_EQ(s.termination, Termination::kConverged) << s.message;
     if (push == Push::kLeaf) EXPECT_LT(max_relative_deviation(sol, e / (1 - rho)), 1e-3);
     double mean = 0.0;
-    for (std::size_t i = 0; i < box.patches.size(); ++i) mean += box.patches[i].area * sol.patch_radiosity[i][0] / box.total_area();
+    for (std::size_t i = 0; i < box.patches.size(); ++i)
+      mean += box.patches[i].area * sol.patch_radiosity[i][0] / box.total_area();
     EXPECT_NEAR(mean * (1 - rho) / e, 1.0, push == Push::kLeaf ? 1e-3 : 1e-2) << to_string(push);
   }
   const Solution lu = solve_finite(box, full(0.1));
@@ -234,8 +235,9 @@ TEST(HardCases, Reflectance0999ClosedRoom) {
 // shares edges with two walls and the rest of the floor). Outcome: with the analytic kernel all
 // emitted power is absorbed (closed scene, convex: no visibility needed) within 1e-9.
 TEST(HardCases, EmitterTouchingReceivers) {
-  Scene s = make_box(1, 1, 1, {material(Rgb::Constant(0.7), Rgb::Zero()), material(Rgb::Constant(0.2), Rgb::Constant(10))},
-                     {0, 0, 0, 0, 0, 0});
+  Scene s =
+      make_box(1, 1, 1, {material(Rgb::Constant(0.7), Rgb::Zero()), material(Rgb::Constant(0.2), Rgb::Constant(10))},
+               {0, 0, 0, 0, 0, 0});
   // Cut the light out of the floor: floor patch 0 becomes the light [0, 0.25] x [0, 0.25] plus the rest.
   s.patches.erase(s.patches.begin());
   s.faces.erase(s.faces.begin());
@@ -306,19 +308,19 @@ TEST(HardCases, TinyEmitterInHugeRoom) {
 TEST(HardCases, NonPlanarAndNonConvexInputFaces) {
   test::TempDir dir;
   dir.write("m.mtl", "newmtl w\nKd 0.8 0.8 0.8\nKe 1 1 1\n");
-  const std::string obj = dir.write(
-      "box.obj",
-      "mtllib m.mtl\nusemtl w\n"
-      "v 0 0 0\nv 1 0 0\nv 1 -0.001 1\nv 0 0 1\n"     // 1-4 bottom corners, 3 below the plane
-      "v 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"          // 5-8 top corners
-      "v 0.5 1 0.5\nv 1 1 0.5\nv 0.5 1 1\n"           // 9-11 top inner points
-      "f 1 4 3 2\n"                                     // floor, non-planar, faces +y
-      "f 6 10 9 11 8 5\n"                               // top L-shape (non-convex), faces -y
-      "f 10 7 11 9\n"                                   // top remaining square, faces -y
-      "f 1 5 8 4\n"                                     // x = 0, faces +x
-      "f 2 3 7 6\n"                                     // x = 1, faces -x
-      "f 4 8 7 3\n"                                     // z = 1, faces -z
-      "f 1 2 6 5\n");                                   // z = 0, faces +z
+  const std::string obj =
+      dir.write("box.obj",
+                "mtllib m.mtl\nusemtl w\n"
+                "v 0 0 0\nv 1 0 0\nv 1 -0.001 1\nv 0 0 1\n"  // 1-4 bottom corners, 3 below the plane
+                "v 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"       // 5-8 top corners
+                "v 0.5 1 0.5\nv 1 1 0.5\nv 0.5 1 1\n"        // 9-11 top inner points
+                "f 1 4 3 2\n"                                // floor, non-planar, faces +y
+                "f 6 10 9 11 8 5\n"                          // top L-shape (non-convex), faces -y
+                "f 10 7 11 9\n"                              // top remaining square, faces -y
+                "f 1 5 8 4\n"                                // x = 0, faces +x
+                "f 2 3 7 6\n"                                // x = 1, faces -x
+                "f 4 8 7 3\n"                                // z = 1, faces -z
+                "f 1 2 6 5\n");                              // z = 0, faces +z
   std::vector<std::string> warnings;
   const Scene s = read_obj_scene(obj, &warnings);
   ASSERT_EQ(warnings.size(), 1u);

@@ -7,9 +7,9 @@
 #include <cstring>
 #include <fstream>
 
+#include <fmt/format.h>
 #include "../support/temp_dir.h"
 #include "hrad/core/error.h"
-#include <fmt/format.h>
 #include "hrad/io/obj_reader.h"
 #include "hrad/io/scene_reader.h"
 
@@ -23,14 +23,14 @@ const Material& material_named(const Scene& s, const std::string& name) {
 }
 
 // A unit square in z = 0 facing +z (vertices 1-4) and a 2 x 1 rectangle at z = 1 facing -z (5-8).
-const std::string kTwoQuads =
-    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 0 1 1\nv 2 1 1\nv 2 0 1\n";
+const std::string kTwoQuads = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 0 1 1\nv 2 1 1\nv 2 0 1\n";
 
 TEST(ExporterFiles, ByteOrderMarksOnObjAndMtl) {
   // Windows tools (3ds Max, Notepad) start files with a UTF-8 byte order mark.
   test::TempDir dir;
   dir.write("m.mtl", "\xEF\xBB\xBFnewmtl w\nKd 0.25 0.5 0.75\n");
-  const Scene s = read_obj_scene(dir.write("s.obj", "\xEF\xBB\xBFmtllib m.mtl\nusemtl w\n" + kTwoQuads + "f 1 2 3 4\n"));
+  const Scene s =
+      read_obj_scene(dir.write("s.obj", "\xEF\xBB\xBFmtllib m.mtl\nusemtl w\n" + kTwoQuads + "f 1 2 3 4\n"));
   ASSERT_EQ(s.patches.size(), 1u);
   EXPECT_DOUBLE_EQ(s.patches[0].area, 1.0);
   EXPECT_EQ(material_named(s, "w").reflectance[2], 0.75);
@@ -77,8 +77,8 @@ TEST(ExporterFiles, CommentsAfterStatementsAndPrincipledBsdfExtras) {
             "Kd 0.800000 0.800000 0.800000\nKs 0.500000 0.500000 0.500000\nKe 10.000000 9.000000 8.000000\n"
             "Ni 1.450000\nd 1.000000\nillum 2\nPr 0.5\nPm 0.0\nPs 0.0\nPc 0.0\nPcr 0.03\naniso 0.0\nanisor 0.0\n"
             "map_Kd tex.png\nmap_Ke glow.png\n");
-  const Scene s =
-      read_obj_scene(dir.write("s.obj", "mtllib m.mtl # libraries\nusemtl Emitter\n" + kTwoQuads + "f 1 2 3 4 # quad\n"));
+  const Scene s = read_obj_scene(
+      dir.write("s.obj", "mtllib m.mtl # libraries\nusemtl Emitter\n" + kTwoQuads + "f 1 2 3 4 # quad\n"));
   ASSERT_EQ(s.patches.size(), 1u);
   const Material& m = material_named(s, "Emitter");
   EXPECT_EQ(m.reflectance[0], 0.8);
@@ -90,9 +90,11 @@ TEST(ExporterFiles, HashInsideMaterialNamesIsPartOfTheName) {
   // 3ds Max's default material names: "Material #25", "Material #26". Cut at '#' as a trailing comment,
   // both were one "Material" holding the last definition's values.
   test::TempDir dir;
-  dir.write("m.mtl", "newmtl Material #25\n\tKd 0.2500 0.2500 0.2500\nnewmtl Material #26\n\tKd 0.7500 0.7500 0.7500\n");
-  const Scene s = read_obj_scene(dir.write(
-      "s.obj", "mtllib m.mtl\n" + kTwoQuads + "usemtl Material #25\nf 1 2 3 4\nusemtl Material #26\nf 5 6 7 8 # top\n"));
+  dir.write("m.mtl",
+            "newmtl Material #25\n\tKd 0.2500 0.2500 0.2500\nnewmtl Material #26\n\tKd 0.7500 0.7500 0.7500\n");
+  const Scene s =
+      read_obj_scene(dir.write("s.obj", "mtllib m.mtl\n" + kTwoQuads +
+                                            "usemtl Material #25\nf 1 2 3 4\nusemtl Material #26\nf 5 6 7 8 # top\n"));
   ASSERT_EQ(s.patches.size(), 2u);
   EXPECT_EQ(s.materials[s.patches[0].material].name, "Material #25");
   EXPECT_EQ(s.materials[s.patches[0].material].reflectance[0], 0.25);
@@ -174,13 +176,13 @@ TEST(ExporterFiles, PlyScenesWithVertexColoursOrFaceProperties) {
   EXPECT_DOUBLE_EQ(v.materials[v.patches[0].material].reflectance[0], 0.2);  // 51 / 255
   EXPECT_DOUBLE_EQ(v.materials[v.patches[0].material].reflectance[2], 0.6);  // 153 / 255
 
-  const std::string face_props = dir.write(
-      "f.ply",
-      "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
-      "element face 2\nproperty list uchar int vertex_indices\nproperty float reflectance_r\n"
-      "property float reflectance_g\nproperty float reflectance_b\nproperty float emission_r\n"
-      "property float emission_g\nproperty float emission_b\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
-      "3 0 1 2 0.5 0.25 0.125 0 0 0\n3 0 2 3 0 0 0 4 4 4\n");
+  const std::string face_props =
+      dir.write("f.ply",
+                "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+                "element face 2\nproperty list uchar int vertex_indices\nproperty float reflectance_r\n"
+                "property float reflectance_g\nproperty float reflectance_b\nproperty float emission_r\n"
+                "property float emission_g\nproperty float emission_b\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+                "3 0 1 2 0.5 0.25 0.125 0 0 0\n3 0 2 3 0 0 0 4 4 4\n");
   const Scene f = read_scene(face_props);
   ASSERT_EQ(f.faces.size(), 2u);
   EXPECT_EQ(f.materials[f.faces[0].material].reflectance[1], 0.25);

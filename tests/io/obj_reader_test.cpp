@@ -112,9 +112,9 @@ TEST(ObjReader, ZeroAreaFaceIsSkippedWithAWarning) {
 // Bad input: each case is one file body and the "file:line: message" fragment it must produce.
 struct BadCase {
   const char* name;
-  const char* obj;    // nullptr: do not write the file
-  const char* mtl;    // nullptr: do not write the MTL
-  const char* expect; // fragment of the message; "@" stands for the OBJ's path
+  const char* obj;     // nullptr: do not write the file
+  const char* mtl;     // nullptr: do not write the MTL
+  const char* expect;  // fragment of the message; "@" stands for the OBJ's path
 };
 
 void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
@@ -144,11 +144,13 @@ constexpr const char* kHead = "mtllib m.mtl\nusemtl w\nv 0 0 0\nv 1 0 0\nv 0 1 0
 INSTANTIATE_TEST_SUITE_P(
     AllCases, ObjReaderBadInput,
     ::testing::Values(
-        BadCase{"missing", nullptr, kMtl, "@: cannot open file"},
-        BadCase{"empty", "", kMtl, "@: empty scene file"},
+        BadCase{"missing", nullptr, kMtl, "@: cannot open file"}, BadCase{"empty", "", kMtl, "@: empty scene file"},
         BadCase{"comments only", "# nothing\n\n", kMtl, "@: empty scene file"},
         BadCase{"garbage", "hello world\n", kMtl, "@:1: unknown statement 'hello'"},
-        BadCase{"binary", "v 0 0 0\n\x7f" "ELF\x02\x01\n", kMtl, "@:2: unknown statement '?ELF"},
+        BadCase{"binary",
+                "v 0 0 0\n\x7f"
+                "ELF\x02\x01\n",
+                kMtl, "@:2: unknown statement '?ELF"},
         BadCase{"nan coordinate", "mtllib m.mtl\nusemtl w\nv 0 nan 0\n", kMtl, "@:3: 'nan' is not a finite number"},
         BadCase{"inf coordinate", "v inf 0 0\n", kMtl, "@:1: 'inf' is not a finite number"},
         BadCase{"huge coordinate", "v 0 0 1e300\n", kMtl, "@:1: '1e300' is out of range"},
@@ -176,11 +178,12 @@ INSTANTIATE_TEST_SUITE_P(
                 "newmtl w\nKd nan 0.5 0.5\n", "m.mtl:2: 'nan' is not a finite number"},
         BadCase{"only degenerate faces", "mtllib m.mtl\nusemtl w\nv 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", kMtl,
                 "@: no patch left"},
-        // A fuzzer finding (corpus of scene_reader_fuzzer): the line scan counted "v\r 5 0 0" as a vertex, tinyobjloader (which
-        // ends lines at a lone \r) did not, so face index 4 passed the scan and read past the parser's
-        // vertex array (heap-buffer-overflow under ASan).
-        BadCase{"carriage return inside a line", "mtllib m.mtl\nusemtl w\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv\r 5 0 0\nf 1 2 4\n",
-                kMtl, "@:6: carriage return inside a line"},
+        // A fuzzer finding (corpus of scene_reader_fuzzer): the line scan counted "v\r 5 0 0" as a vertex,
+        // tinyobjloader (which ends lines at a lone \r) did not, so face index 4 passed the scan and read past the
+        // parser's vertex array (heap-buffer-overflow under ASan).
+        BadCase{"carriage return inside a line",
+                "mtllib m.mtl\nusemtl w\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv\r 5 0 0\nf 1 2 4\n", kMtl,
+                "@:6: carriage return inside a line"},
         // Other control characters are not separators for the parser either: not a vertex statement.
         BadCase{"form feed after v", "mtllib m.mtl\nusemtl w\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv\f 5 0 0\nf 1 2 4\n", kMtl,
                 "@:6: unknown statement 'v?'"}),

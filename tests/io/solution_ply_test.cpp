@@ -4,14 +4,14 @@
 #include <fstream>
 #include <iterator>
 
+#include <gtest/gtest.h>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
-#include <gtest/gtest.h>
 
+#include "../support/temp_dir.h"
 #include "hrad/core/error.h"
 #include "hrad/core/face_geometry.h"
 #include "hrad/core/tone_map.h"
-#include "../support/temp_dir.h"
 
 namespace hrad {
 namespace {
@@ -19,8 +19,8 @@ namespace {
 // Two unit quads sharing an edge (patch 0, split into two elements) and a triangle (patch 3).
 Solution small_solution() {
   Solution s;
-  s.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(2, 1, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
-                Vec3(0, 0, 5), Vec3(3, 0, 5), Vec3(0, 2, 5)};
+  s.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(2, 1, 0), Vec3(1, 1, 0),
+                Vec3(0, 1, 0), Vec3(0, 0, 5), Vec3(3, 0, 5), Vec3(0, 2, 5)};
   for (int i = 0; i < 9; ++i) s.vertex_radiosity.push_back(Rgb(0.1 * i + 1.0 / 3.0, 1e-9 * i, 12345.678901234 + i));
   s.faces = {{0, 1, 4, 5}, {1, 2, 3, 4}, {6, 7, 8}};
   s.face_patch = {0, 0, 3};
@@ -163,14 +163,15 @@ TEST(SolutionPly, BadFilesAreErrorsNamingTheFile) {
                                 "property double radiosity_b\nend_header\n0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n"
                                 "3 0 1 2 1 1 1\n"),
                       "patch");
-  expect_error_naming(dir.write("badindex.ply",
-                                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                                "property float z\nproperty double radiosity_r\nproperty double radiosity_g\n"
-                                "property double radiosity_b\nelement face 1\nproperty list uchar int vertex_indices\n"
-                                "property double radiosity_r\nproperty double radiosity_g\nproperty double radiosity_b\n"
-                                "property int patch\nend_header\n0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n"
-                                "3 0 1 99 1 1 1 0\n"),
-                      "1 of 1 faces are invalid");
+  expect_error_naming(
+      dir.write("badindex.ply",
+                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                "property float z\nproperty double radiosity_r\nproperty double radiosity_g\n"
+                "property double radiosity_b\nelement face 1\nproperty list uchar int vertex_indices\n"
+                "property double radiosity_r\nproperty double radiosity_g\nproperty double radiosity_b\n"
+                "property int patch\nend_header\n0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n"
+                "3 0 1 99 1 1 1 0\n"),
+      "1 of 1 faces are invalid");
 }
 
 TEST(SolutionPly, TruncatedFilesAreErrorsNotHangs) {

@@ -33,11 +33,13 @@ std::vector<std::vector<Vec3>> corners_inside_edges(const ElementHierarchy& h) {
   for (const NodeId f : leaves) {
     const ElementNode& e = h.node(f);
     for (int k = 0; k < e.vertex_count; ++k) {
-      const Vec3 &a = e.vertices[static_cast<std::size_t>(k)], &b = e.vertices[static_cast<std::size_t>((k + 1) % e.vertex_count)];
+      const Vec3 &a = e.vertices[static_cast<std::size_t>(k)],
+                 &b = e.vertices[static_cast<std::size_t>((k + 1) % e.vertex_count)];
       std::vector<Vec3> found;
       for (const NodeId g : leaves)
         for (const Vec3& p : h.node(g).polygon())
-          if (inside(p, a, b) && std::none_of(found.begin(), found.end(), [&](const Vec3& q) { return (q - p).norm() <= kTol; }))
+          if (inside(p, a, b) &&
+              std::none_of(found.begin(), found.end(), [&](const Vec3& q) { return (q - p).norm() <= kTol; }))
             found.push_back(p);
       out.push_back(found);
     }
@@ -80,7 +82,8 @@ TEST(Balance, ADeeplyRefinedQuadtreeGetsAtMostOneCornerPerEdgeAtItsMidpoint) {
   for (const NodeId f : h.all_leaves()) {
     const ElementNode& e = h.node(f);
     for (int k = 0; k < e.vertex_count; ++k) {
-      const Vec3 &a = e.vertices[static_cast<std::size_t>(k)], &b = e.vertices[static_cast<std::size_t>((k + 1) % e.vertex_count)];
+      const Vec3 &a = e.vertices[static_cast<std::size_t>(k)],
+                 &b = e.vertices[static_cast<std::size_t>((k + 1) % e.vertex_count)];
       std::size_t n = 0;
       for (const NodeId g : h.all_leaves())
         for (const Vec3& p : h.node(g).polygon())
@@ -119,12 +122,14 @@ TEST(Balance, CrossesCoplanarPatchesAtTJunctionsButNotCreases) {
   for (const NodeId f : h.all_leaves()) {
     const ElementNode& e = h.node(f);
     for (int k = 0; k < e.vertex_count; ++k) {
-      const Vec3 &a = e.vertices[static_cast<std::size_t>(k)], &b = e.vertices[static_cast<std::size_t>((k + 1) % e.vertex_count)];
+      const Vec3 &a = e.vertices[static_cast<std::size_t>(k)],
+                 &b = e.vertices[static_cast<std::size_t>((k + 1) % e.vertex_count)];
       std::vector<Vec3> found;
       for (const NodeId g : h.all_leaves()) {
         if ((h.node(g).patch == 3) != (e.patch == 3)) continue;  // other plane
         for (const Vec3& p : h.node(g).polygon())
-          if (inside(p, a, b) && std::none_of(found.begin(), found.end(), [&](const Vec3& q) { return (q - p).norm() <= kTol; }))
+          if (inside(p, a, b) &&
+              std::none_of(found.begin(), found.end(), [&](const Vec3& q) { return (q - p).norm() <= kTol; }))
             found.push_back(p);
       }
       EXPECT_LE(found.size(), 1u) << "patch " << e.patch;
@@ -158,7 +163,8 @@ TEST(Balance, TheOutputMeshOfBalancedLeavesIsCrackFree) {
     // The face's own corners are its leaf's; any other vertex of it lies inside one of its edges.
     const ElementNode& e = h.node(h.all_leaves()[f]);
     for (int k = 0; k < e.vertex_count; ++k) {
-      const Vec3 &a = e.vertices[static_cast<std::size_t>(k)], &b = e.vertices[static_cast<std::size_t>((k + 1) % e.vertex_count)];
+      const Vec3 &a = e.vertices[static_cast<std::size_t>(k)],
+                 &b = e.vertices[static_cast<std::size_t>((k + 1) % e.vertex_count)];
       std::size_t on_edge = 0;
       for (std::size_t v = 0; v < sol.vertices.size(); ++v) {
         if (!inside(sol.vertices[v], a, b)) continue;

@@ -25,8 +25,8 @@ double leaf_area_sum(const ElementHierarchy& h, int patch) {
 
 TEST(ElementHierarchy, UniformSubdivisionAreasSumToPatchArea) {
   // An irregular convex quad and a scalene triangle: the 1-to-4 splits must still tile them.
-  const Scene s = make_scene({quad({0, 0, 0}, {3, 0.2, 0}, {2.5, 2, 0}, {-0.3, 1.4, 0}),
-                              {{0, 0, 1}, {2, 0.5, 1.5}, {0.7, 3, 1}}});
+  const Scene s =
+      make_scene({quad({0, 0, 0}, {3, 0.2, 0}, {2.5, 2, 0}, {-0.3, 1.4, 0}), {{0, 0, 1}, {2, 0.5, 1.5}, {0.7, 3, 1}}});
   ElementHierarchy h(s);
   const double max_area = s.patches[0].area / 50.0;
   h.subdivide_uniform(max_area);
@@ -160,7 +160,8 @@ TEST(LeafMesh, VertexRadiosityIsAreaWeightedAndPatchMeanIsAreaMean) {
   const Solution sol = h.to_solution();
   // Vertex (2, 1) touches all three faces (it is a T-vertex inserted into the big square).
   for (std::size_t v = 0; v < sol.vertices.size(); ++v) {
-    if ((sol.vertices[v] - Vec3(2, 1, 0)).norm() < 1e-12) EXPECT_NEAR(sol.vertex_radiosity[v][0], (4 + 2 + 4) / 6.0, 1e-14);
+    if ((sol.vertices[v] - Vec3(2, 1, 0)).norm() < 1e-12)
+      EXPECT_NEAR(sol.vertex_radiosity[v][0], (4 + 2 + 4) / 6.0, 1e-14);
     if ((sol.vertices[v] - Vec3(0, 0, 0)).norm() < 1e-12) EXPECT_NEAR(sol.vertex_radiosity[v][0], 1.0, 1e-14);
   }
   EXPECT_EQ(sol.faces[0].size(), 5u);  // the big square gained the T-vertex (2, 1)
@@ -173,8 +174,8 @@ TEST(LeafMesh, VertexRadiosityIsAreaWeightedAndPatchMeanIsAreaMean) {
 TEST(LeafMesh, CreasesKeepSeparateVerticesAndStayConforming) {
   // An L: floor (z up) and wall (facing +y... into the room) meeting along the x axis, refined
   // differently, so the crease has T-vertices on both sides.
-  const Scene s = make_scene({quad({0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}),
-                              quad({0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0})});
+  const Scene s =
+      make_scene({quad({0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}), quad({0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0})});
   ElementHierarchy h(s);
   h.subdivide_uniform(0, 1.0);
   h.subdivide_uniform(1, 0.25);

@@ -21,13 +21,13 @@ const Rgb kEmission(1.0, 0.6, 0.3);
 std::vector<ProbePoint> box_probes() {
   std::vector<ProbePoint> p;
   auto add = [&p](Vec3 x, Vec3 n) { p.push_back({x, n.normalized(), 0}); };
-  add({1.0, 0.0, 0.75}, {0, 1, 0});     // floor centre
-  add({0.3, 1.0, 0.2}, {0, -1, 0});     // ceiling
-  add({0.0, 0.5, 1.49}, {1, 0, 0});     // x = 0 wall, 1 cm from an edge
-  add({2.0, 0.99, 0.01}, {-1, 0, 0});   // x = 2 wall, near a corner
-  add({1.7, 0.4, 0.0}, {0, 0, 1});      // z = 0 wall
+  add({1.0, 0.0, 0.75}, {0, 1, 0});         // floor centre
+  add({0.3, 1.0, 0.2}, {0, -1, 0});         // ceiling
+  add({0.0, 0.5, 1.49}, {1, 0, 0});         // x = 0 wall, 1 cm from an edge
+  add({2.0, 0.99, 0.01}, {-1, 0, 0});       // x = 2 wall, near a corner
+  add({1.7, 0.4, 0.0}, {0, 0, 1});          // z = 0 wall
   add({1.0, 0.5, 0.75}, {0.3, -0.5, 0.8});  // in space, facing a corner
-  add({0.05, 0.9, 1.4}, {-1, 0, 0});    // in space, 5 cm from the wall it faces
+  add({0.05, 0.9, 1.4}, {-1, 0, 0});        // in space, 5 cm from the wall it faces
   return p;
 }
 
@@ -51,7 +51,8 @@ TEST(ReferenceClosedBox, PointsOnWallsAndInSpaceSeeEOverOneMinusRho) {
     EXPECT_EQ(s.paths, probes.size() * 8192u);
     EXPECT_GT(s.rays(), s.paths);  // at least one bounce and one shadow ray per path
     for (std::size_t i = 0; i < out.size(); ++i) {
-      const std::string what = "rho " + std::to_string(rho[0]) + "," + std::to_string(rho[1]) + " probe " + std::to_string(i);
+      const std::string what =
+          "rho " + std::to_string(rho[0]) + "," + std::to_string(rho[1]) + " probe " + std::to_string(i);
       expect_agrees(out[i].irradiance, out[i].irradiance_se, exact, 0.012, what + " irradiance");
       if (i < 5) {
         ASSERT_GE(out[i].patch, 0) << what << " should lie on a wall";

@@ -16,8 +16,8 @@ namespace {
 // A room with an occluding block and a small light: shadows, several bounces, colour.
 Scene test_room() {
   Scene s = make_box(2.0, 1.5, 1.0,
-                     {material(Rgb(0.7, 0.5, 0.3), Rgb::Zero(), "wall"), material(Rgb(0.2, 0.6, 0.8), Rgb::Zero(), "floor"),
-                      material(Rgb::Zero(), Rgb(5, 5, 4), "light")},
+                     {material(Rgb(0.7, 0.5, 0.3), Rgb::Zero(), "wall"),
+                      material(Rgb(0.2, 0.6, 0.8), Rgb::Zero(), "floor"), material(Rgb::Zero(), Rgb(5, 5, 4), "light")},
                      {1, 0, 0, 0, 0, 0});
   add_block(s, 0.6, 1.2, 0.0, 0.7, 0.3, 0.7, 0);
   add_polygon(s, {{0.8, 1.49, 0.4}, {1.2, 1.49, 0.4}, {1.2, 1.49, 0.6}, {0.8, 1.49, 0.6}}, -Vec3::UnitY(), 2);

@@ -55,9 +55,9 @@ TEST(ReferenceEmbreeScene, BlocksAndBacks) {
 TEST(ReferenceEmbreeScene, ZeroThicknessWallShowsTheFrontFacingTheRay) {
   Scene s;
   s.materials = {material(Rgb::Constant(0.5), Rgb::Zero())};
-  add_polygon(s, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, Vec3::UnitZ(), 0);    // faces +z
-  add_polygon(s, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, -Vec3::UnitZ(), 0);              // faces -z, half
-  add_polygon(s, {{1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, -Vec3::UnitZ(), 0);              // faces -z, other half
+  add_polygon(s, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, Vec3::UnitZ(), 0);  // faces +z
+  add_polygon(s, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, -Vec3::UnitZ(), 0);            // faces -z, half
+  add_polygon(s, {{1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, -Vec3::UnitZ(), 0);            // faces -z, other half
   const EmbreeScene rays(s);
   RayCounts counts;
   for (const Vec3& target : {Vec3(0.3, 0.2, 0), Vec3(0.8, 0.7, 0), Vec3(0.5, 0.5, 0)}) {

@@ -46,16 +46,18 @@ TEST(ReferenceHowell, ProbeParallelToARectangleSeesEmissionTimesB3) {
   for (double c : {0.05, 0.9, 4.0}) {
     // Under a corner: B-3 itself.
     PointEstimate e = probe(scene, {0, 0, c}, -Vec3::UnitZ());
-    expect_agrees(e.irradiance, e.irradiance_se, kEmission * howell_b3(a, b, c), 0.015, "corner, c " + std::to_string(c));
+    expect_agrees(e.irradiance, e.irradiance_se, kEmission * howell_b3(a, b, c), 0.015,
+                  "corner, c " + std::to_string(c));
     // Under an inner point: four rectangles meeting there.
     const double x = 0.2, y = 0.9;
-    const double inner = howell_b3(x, y, c) + howell_b3(a - x, y, c) + howell_b3(x, b - y, c) + howell_b3(a - x, b - y, c);
+    const double inner =
+        howell_b3(x, y, c) + howell_b3(a - x, y, c) + howell_b3(x, b - y, c) + howell_b3(a - x, b - y, c);
     e = probe(scene, {x, y, c}, -Vec3::UnitZ());
     expect_agrees(e.irradiance, e.irradiance_se, kEmission * inner, 0.01, "inner, c " + std::to_string(c));
     // Beside the rectangle (x = -0.4): the rectangle [-0.4, a] minus [-0.4, 0], both halves in y.
     const double d = 0.4, y2 = 0.5;
-    const double outside = howell_b3(a + d, y2, c) - howell_b3(d, y2, c) + howell_b3(a + d, b - y2, c) -
-                           howell_b3(d, b - y2, c);
+    const double outside =
+        howell_b3(a + d, y2, c) - howell_b3(d, y2, c) + howell_b3(a + d, b - y2, c) - howell_b3(d, b - y2, c);
     e = probe(scene, {-d, y2, c}, -Vec3::UnitZ());
     expect_agrees(e.irradiance, e.irradiance_se, kEmission * outside, 0.015, "beside, c " + std::to_string(c));
   }

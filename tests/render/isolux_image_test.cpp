@@ -27,7 +27,8 @@ TEST(IsoluxLevels, AreTheRoundMultiplesOfTheSmallestStepThatFits) {
     return std::ceil((hi - 1e-6 * s) / s) - std::floor((lo + 1e-6 * s) / s) - 1;
   };
   for (int t = 0; t < 200; ++t) {
-    const double lo = std::pow(10.0, (t % 9) - 4) * (1 + 0.37 * t), hi = lo + std::pow(10.0, (t % 7) - 2) * (1.3 + t % 5);
+    const double lo = std::pow(10.0, (t % 9) - 4) * (1 + 0.37 * t),
+                 hi = lo + std::pow(10.0, (t % 7) - 2) * (1.3 + t % 5);
     const int target = 3 + t % 8;
     const std::vector<double> levels = isolux_levels(lo, hi, target);
     ASSERT_LE(static_cast<int>(levels.size()), target) << lo << " " << hi;

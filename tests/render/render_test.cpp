@@ -5,12 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/temp_dir.h"
 #include "hrad/core/error.h"
 #include "hrad/io/exr_writer.h"
 #include "hrad/io/png_writer.h"
 #include "hrad/render/pixel_samples.h"
 #include "hrad/render/rasterizer.h"
-#include "../support/temp_dir.h"
 
 namespace hrad {
 namespace {
@@ -180,7 +180,7 @@ TEST(Render, WireframeDrawsEdgesOverFlatShading) {
   EXPECT_TRUE(image.at(25, 40) == red || image.at(24, 40) == red);
   EXPECT_TRUE(image.at(40, 25) == red || image.at(40, 24) == red);
   EXPECT_NE(image.at(26, 40), red);
-  EXPECT_EQ(image.at(50, 50), (Rgb8{0, 255, 0}));      // link
+  EXPECT_EQ(image.at(50, 50), (Rgb8{0, 255, 0}));  // link
   EXPECT_EQ(image.at(10, 10), (Rgb8{0, 0, 0}));
   // A link hidden behind the square is not drawn.
   w.links = {{Vec3(0, -2, 20), Vec3(0, 2, 20)}};

@@ -10,16 +10,16 @@
 #include <string>
 #include <vector>
 
+#include "hrad/analysis/error_metrics.h"
 #include "hrad/core/error.h"
 #include "hrad/formfactor/polygon_to_polygon.h"
-#include "hrad/analysis/error_metrics.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/io/obj_reader.h"
 #include "hrad/solvers/cluster_transfer.h"
 #include "hrad/solvers/cluster_tree.h"
-#include "hrad/solvers/solver_context.h"
 #include "hrad/solvers/hierarchical.h"
 #include "hrad/solvers/solve.h"
+#include "hrad/solvers/solver_context.h"
 #include "solver_test_scenes.h"
 
 namespace hrad {
@@ -268,8 +268,10 @@ TEST(ClusteredHierarchical, EnergyBalanceInAClosedColouredFurnishedRoom) {
   // with the irradiance H_i = (B_i - E_i) / rho_i, up to the sampled visible fractions' noise:
   // within 1% per channel.
   const Scene s = furnished_room(8, 3, 6, 1.0, 4, 3,
-                                 {gray(0.6, 0.0), {"light", Rgb(0.5, 0.5, 0.5), Rgb(20.0, 15.0, 10.0)},
-                                  {"red", Rgb(0.7, 0.2, 0.1), Rgb::Zero()}, {"green", Rgb(0.1, 0.6, 0.2), Rgb::Zero()}},
+                                 {gray(0.6, 0.0),
+                                  {"light", Rgb(0.5, 0.5, 0.5), Rgb(20.0, 15.0, 10.0)},
+                                  {"red", Rgb(0.7, 0.2, 0.1), Rgb::Zero()},
+                                  {"green", Rgb(0.1, 0.6, 0.2), Rgb::Zero()}},
                                  2, 3);
   Solution sol;
   const SolveSummary sum = solve(s, clustered(), &sol);
@@ -279,10 +281,10 @@ TEST(ClusteredHierarchical, EnergyBalanceInAClosedColouredFurnishedRoom) {
 }
 
 TEST(ClusteredHierarchical, SameBitsAtOneAndTwoThreads) {
-  const Scene s = furnished_room(6, 3, 4, 1.0, 3, 2,
-                                 {gray(0.6, 0.0), {"light", Rgb(0.5, 0.5, 0.5), Rgb(20.0, 15.0, 10.0)},
-                                  {"red", Rgb(0.7, 0.2, 0.1), Rgb::Zero()}},
-                                 2);
+  const Scene s = furnished_room(
+      6, 3, 4, 1.0, 3, 2,
+      {gray(0.6, 0.0), {"light", Rgb(0.5, 0.5, 0.5), Rgb(20.0, 15.0, 10.0)}, {"red", Rgb(0.7, 0.2, 0.1), Rgb::Zero()}},
+      2);
   SolveOptions o = clustered();
   o.threads = 1;
   Solution a, b;

@@ -85,16 +85,16 @@ void expect_same_with_all_effects(const Scene& s, Method m, double max_area) {
 }
 
 TEST(Effects, AllGivesTheSameRadiosityInAConvexRoom) {
-  const Scene s = test::make_box(1, 0.7, 1.2,
-                                 {material(Rgb::Constant(0.6), Rgb::Zero()), material(Rgb::Constant(0.6), Rgb::Constant(3))},
-                                 {0, 1, 0, 0, 0, 0});
+  const Scene s = test::make_box(
+      1, 0.7, 1.2, {material(Rgb::Constant(0.6), Rgb::Zero()), material(Rgb::Constant(0.6), Rgb::Constant(3))},
+      {0, 1, 0, 0, 0, 0});
   for (const Method m : {Method::kFull, Method::kSubstructure}) expect_same_with_all_effects(s, m, 0.1);
 }
 
 TEST(Effects, AllGivesTheSameRadiosityWithOcclusionAndColour) {
-  Scene s = test::make_box(1, 1, 1,
-                           {material(Rgb(0.6, 0.3, 0.2), Rgb::Zero()), material(Rgb(0.5, 0.5, 0.5), Rgb(4, 3, 2))},
-                           {0, 1, 0, 0, 0, 0});
+  Scene s =
+      test::make_box(1, 1, 1, {material(Rgb(0.6, 0.3, 0.2), Rgb::Zero()), material(Rgb(0.5, 0.5, 0.5), Rgb(4, 3, 2))},
+                     {0, 1, 0, 0, 0, 0});
   test::add_block(s, 0.3, 0.6, 0.0, 0.4, 0.3, 0.6, 0);
   for (const Method m : {Method::kFull, Method::kSubstructure}) expect_same_with_all_effects(s, m, 0.1);
 }

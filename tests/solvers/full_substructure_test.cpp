@@ -71,15 +71,16 @@ TEST_P(ClosedRoom, UniformEmissionGivesEOverOneMinusRho) {
 
 INSTANTIATE_TEST_SUITE_P(
     Solvers, ClosedRoom,
-    ::testing::Values(ClosedRoomCase{Method::kFull, LinearSolver::kLu, FormFactorKernel::kPointContour, 0.5, false},
-                      ClosedRoomCase{Method::kFull, LinearSolver::kLu, FormFactorKernel::kPointContour, 0.99, false},
-                      ClosedRoomCase{Method::kFull, LinearSolver::kLu, FormFactorKernel::kPointContour, 0.99, true},
-                      ClosedRoomCase{Method::kFull, LinearSolver::kLu, FormFactorKernel::kAnalytic, 0.99, true},
-                      ClosedRoomCase{Method::kFull, LinearSolver::kGaussSeidel, FormFactorKernel::kPointContour, 0.9, true},
-                      ClosedRoomCase{Method::kFull, LinearSolver::kJacobi, FormFactorKernel::kPointContour, 0.9, false},
-                      ClosedRoomCase{Method::kSubstructure, LinearSolver::kLu, FormFactorKernel::kPointContour, 0.5, false},
-                      ClosedRoomCase{Method::kSubstructure, LinearSolver::kLu, FormFactorKernel::kPointContour, 0.99, true},
-                      ClosedRoomCase{Method::kSubstructure, LinearSolver::kLu, FormFactorKernel::kAnalytic, 0.99, true}));
+    ::testing::Values(
+        ClosedRoomCase{Method::kFull, LinearSolver::kLu, FormFactorKernel::kPointContour, 0.5, false},
+        ClosedRoomCase{Method::kFull, LinearSolver::kLu, FormFactorKernel::kPointContour, 0.99, false},
+        ClosedRoomCase{Method::kFull, LinearSolver::kLu, FormFactorKernel::kPointContour, 0.99, true},
+        ClosedRoomCase{Method::kFull, LinearSolver::kLu, FormFactorKernel::kAnalytic, 0.99, true},
+        ClosedRoomCase{Method::kFull, LinearSolver::kGaussSeidel, FormFactorKernel::kPointContour, 0.9, true},
+        ClosedRoomCase{Method::kFull, LinearSolver::kJacobi, FormFactorKernel::kPointContour, 0.9, false},
+        ClosedRoomCase{Method::kSubstructure, LinearSolver::kLu, FormFactorKernel::kPointContour, 0.5, false},
+        ClosedRoomCase{Method::kSubstructure, LinearSolver::kLu, FormFactorKernel::kPointContour, 0.99, true},
+        ClosedRoomCase{Method::kSubstructure, LinearSolver::kLu, FormFactorKernel::kAnalytic, 0.99, true}));
 
 TEST(ClosedRoom, SubstructuringWithSmallerPatches) {
   const Scene s = uniform_box(0.95, 1.0, true);
@@ -101,9 +102,9 @@ TEST(StoppingTest, ToleranceBoundsTheErrorOfTheAnswer) {
   const double rho = 0.9, e = 1.0;
   const Scene s = make_box(1.0, 1.0, 1.0, {material(Rgb::Constant(rho), Rgb::Constant(e))}, {0, 0, 0, 0, 0, 0});
   const double exact = e / (1.0 - rho), reflected = exact - e;
-  for (const auto& [method, linear] : {std::pair{Method::kSubstructure, LinearSolver::kLu},
-                                       std::pair{Method::kFull, LinearSolver::kJacobi},
-                                       std::pair{Method::kFull, LinearSolver::kGaussSeidel}}) {
+  for (const auto& [method, linear] :
+       {std::pair{Method::kSubstructure, LinearSolver::kLu}, std::pair{Method::kFull, LinearSolver::kJacobi},
+        std::pair{Method::kFull, LinearSolver::kGaussSeidel}}) {
     SolveOptions o = options(method);
     o.tolerance = 1e-6;
     o.linear_solver = linear;
@@ -193,7 +194,8 @@ TEST(EnergyBalance, ClosedColouredRoomContourKernel) {
 }
 
 TEST(EnergyBalance, ClosedRoomWithOccludingBlock) {
-  // Visibility is sampled (kDefaultVisibilitySamples point pairs per partial pair), so rows sum to 1 only approximately.
+  // Visibility is sampled (kDefaultVisibilitySamples point pairs per partial pair), so rows sum to 1 only
+  // approximately.
   const Scene s = coloured_box(true);
   for (const Method m : {Method::kFull, Method::kSubstructure}) {
     Solution sol;
@@ -346,9 +348,11 @@ TEST(CornellBox, FullAndSubstructuringConvergeToTheRuler) {
   };
   const double full_coarse = error_of(Method::kFull, 32, 32), full_fine = error_of(Method::kFull, 128, 32);
   EXPECT_LT(full_fine, 0.5 * full_coarse) << full_coarse << " -> " << full_fine;
-  const double sub_coarse = error_of(Method::kSubstructure, 128, 16), sub_fine = error_of(Method::kSubstructure, 128, 64);
+  const double sub_coarse = error_of(Method::kSubstructure, 128, 16),
+               sub_fine = error_of(Method::kSubstructure, 128, 64);
   const auto shooters = [&](double e) { return std::sqrt(std::max(0.0, e * e - full_fine * full_fine)); };
-  EXPECT_LT(shooters(sub_fine), 0.5 * shooters(sub_coarse)) << sub_coarse << " -> " << sub_fine << " (receivers " << full_fine << ")";
+  EXPECT_LT(shooters(sub_fine), 0.5 * shooters(sub_coarse))
+      << sub_coarse << " -> " << sub_fine << " (receivers " << full_fine << ")";
 }
 
 // --- Options ----------------------------------------------------------------------------------------

@@ -14,7 +14,9 @@
 namespace hrad {
 namespace {
 
-std::string scene_path(const std::string& name) { return std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/" + name; }
+std::string scene_path(const std::string& name) {
+  return std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/" + name;
+}
 
 std::vector<Vec3> face_polygon(const Solution& s, std::size_t f) {
   std::vector<Vec3> poly;

@@ -8,8 +8,8 @@
 
 #include <cmath>
 #include <numbers>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hrad/analysis/error_metrics.h"
@@ -28,7 +28,9 @@
 namespace hrad {
 namespace {
 
-std::string scene_path(const std::string& name) { return std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/" + name; }
+std::string scene_path(const std::string& name) {
+  return std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/" + name;
+}
 
 using test::add_polygon;
 using test::make_faceted_sphere;
@@ -40,9 +42,7 @@ Scene make_box(double a, double b, double c, const std::vector<Material>& materi
   s.materials = materials;
   auto m = [&](int k) { return std::min<int>(k, static_cast<int>(materials.size()) - 1); };
   const Vec3 centre(a / 2, b / 2, c / 2);
-  auto wall = [&](std::vector<Vec3> v, int k) {
-    add_polygon(s, v, centre - polygon_centroid(v), m(k));
-  };
+  auto wall = [&](std::vector<Vec3> v, int k) { add_polygon(s, v, centre - polygon_centroid(v), m(k)); };
   wall({{0, 0, 0}, {a, 0, 0}, {a, 0, c}, {0, 0, c}}, 0);  // floor
   wall({{0, b, 0}, {a, b, 0}, {a, b, c}, {0, b, c}}, 1);  // ceiling
   wall({{0, 0, 0}, {0, b, 0}, {0, b, c}, {0, 0, c}}, 2);  // x = 0
@@ -308,8 +308,12 @@ TEST(Hierarchical, EnergyBalanceInAClosedColouredRoom) {
   // Power absorbed equals power emitted: sum_i A_i (1 - rho_i) H_i = sum_i A_i E_i with the
   // irradiance H_i = (B_i - E_i) / rho_i. Walls differ in reflectance; only the ceiling emits.
   const Scene s = make_box(3.0, 2.0, 4.0,
-                           {gray(0.3, 0.0), gray(0.8, 10.0), {"red", Rgb(0.7, 0.1, 0.1), Rgb::Zero()},
-                            {"green", Rgb(0.1, 0.6, 0.2), Rgb::Zero()}, gray(0.5, 0.0), gray(0.6, 0.0)});
+                           {gray(0.3, 0.0),
+                            gray(0.8, 10.0),
+                            {"red", Rgb(0.7, 0.1, 0.1), Rgb::Zero()},
+                            {"green", Rgb(0.1, 0.6, 0.2), Rgb::Zero()},
+                            gray(0.5, 0.0),
+                            gray(0.6, 0.0)});
   Solution sol;
   const SolveSummary sum = solve_hr(s, &sol);
   ASSERT_EQ(sum.termination, Termination::kConverged) << sum.message;
@@ -346,8 +350,12 @@ TEST(Hierarchical, ScaledScenesGiveTheSameAnswer) {
   // same links and the same radiosity up to the iteration tolerance (1e-6), from micrometres to
   // megametres.
   const Scene base = make_box(3.0, 2.0, 4.0,
-                              {gray(0.3, 0.0), gray(0.8, 10.0), {"red", Rgb(0.7, 0.1, 0.1), Rgb::Zero()},
-                               {"green", Rgb(0.1, 0.6, 0.2), Rgb::Zero()}, gray(0.5, 0.0), gray(0.6, 0.0)});
+                              {gray(0.3, 0.0),
+                               gray(0.8, 10.0),
+                               {"red", Rgb(0.7, 0.1, 0.1), Rgb::Zero()},
+                               {"green", Rgb(0.1, 0.6, 0.2), Rgb::Zero()},
+                               gray(0.5, 0.0),
+                               gray(0.6, 0.0)});
   Solution reference;
   const SolveSummary ref_sum = solve_hr(base, &reference);
   // Rounded (decimal) scales move where the iteration stops by less than its tolerance: 1e-5 of
@@ -426,20 +434,20 @@ TEST(Hierarchical, RefinesNearACommonEdge) {
 TEST(Hierarchical, SameInputSameOutputBitwiseAtAnyThreadCount) {
   const Scene s = read_obj_scene(scene_path("simple_room.obj"));
   for (const Push push : {Push::kHsa, Push::kLeaf}) {
-  SolveOptions o = with_push(push);
-  o.threads = 1;
-  Solution a, b;
-  const SolveSummary sa = solve_hr(s, &a, o);
-  o.threads = 2;
-  const SolveSummary sb = solve_hr(s, &b, o);
-  EXPECT_EQ(sa.links, sb.links);
-  EXPECT_EQ(sa.iterations, sb.iterations);
-  ASSERT_EQ(a.face_radiosity.size(), b.face_radiosity.size());
-  for (std::size_t i = 0; i < a.face_radiosity.size(); ++i) {
-    for (int c = 0; c < 3; ++c) ASSERT_EQ(a.face_radiosity[i][c], b.face_radiosity[i][c]) << "face " << i;
-  }
-  ASSERT_EQ(a.vertices.size(), b.vertices.size());
-  for (std::size_t i = 0; i < a.vertices.size(); ++i) ASSERT_EQ(a.vertices[i], b.vertices[i]);
+    SolveOptions o = with_push(push);
+    o.threads = 1;
+    Solution a, b;
+    const SolveSummary sa = solve_hr(s, &a, o);
+    o.threads = 2;
+    const SolveSummary sb = solve_hr(s, &b, o);
+    EXPECT_EQ(sa.links, sb.links);
+    EXPECT_EQ(sa.iterations, sb.iterations);
+    ASSERT_EQ(a.face_radiosity.size(), b.face_radiosity.size());
+    for (std::size_t i = 0; i < a.face_radiosity.size(); ++i) {
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(a.face_radiosity[i][c], b.face_radiosity[i][c]) << "face " << i;
+    }
+    ASSERT_EQ(a.vertices.size(), b.vertices.size());
+    for (std::size_t i = 0; i < a.vertices.size(); ++i) ASSERT_EQ(a.vertices[i], b.vertices[i]);
   }
 }
 

@@ -48,7 +48,8 @@ TEST(LinearBasis, ProjectionReproducesLinearFieldsAndKeepsTheMeanOfQuadraticOnes
       quadratic[static_cast<std::size_t>(k)] = Rgb::Constant(x.x() * x.x() + 3.0 * x.y() * x.z() - x.y());
     }
     const PointValues back = project_linear(p, n, linear);
-    for (int k = 0; k < s.count; ++k) EXPECT_NEAR(back[static_cast<std::size_t>(k)][0], linear[static_cast<std::size_t>(k)][0], 1e-12);
+    for (int k = 0; k < s.count; ++k)
+      EXPECT_NEAR(back[static_cast<std::size_t>(k)][0], linear[static_cast<std::size_t>(k)][0], 1e-12);
     const PointValues q = project_linear(p, n, quadratic);
     double mean_before = 0.0, mean_after = 0.0;
     for (int k = 0; k < s.count; ++k) {
@@ -71,7 +72,8 @@ TEST(LinearBasis, MomentsOfALinearFieldAreItsIntegralsAgainstTheBasis) {
   };
   PointValues values;
   values.fill(Rgb::Zero());
-  for (int k = 0; k < 9; ++k) values[static_cast<std::size_t>(k)] = Rgb::Constant(bilinear(kSimpsonQuadUv[k][0], kSimpsonQuadUv[k][1]));
+  for (int k = 0; k < 9; ++k)
+    values[static_cast<std::size_t>(k)] = Rgb::Constant(bilinear(kSimpsonQuadUv[k][0], kSimpsonQuadUv[k][1]));
   const PointValues m = point_field_moments(s.weight, 9, values);
   auto lagrange = [](int node, double t) {
     return node == 0 ? 2 * (t - 0.5) * (t - 1) : node == 1 ? -4 * t * (t - 1) : 2 * t * (t - 0.5);
@@ -85,7 +87,8 @@ TEST(LinearBasis, MomentsOfALinearFieldAreItsIntegralsAgainstTheBasis) {
       for (int b = 0; b < 4; ++b) {
         const double u = 0.5 * (g[a] + 1), v = 0.5 * (g[b] + 1);
         exact += 0.25 * gw[a] * gw[b] * jacobian * bilinear(u, v) *
-                 lagrange(static_cast<int>(2 * kSimpsonQuadUv[i][0]), u) * lagrange(static_cast<int>(2 * kSimpsonQuadUv[i][1]), v);
+                 lagrange(static_cast<int>(2 * kSimpsonQuadUv[i][0]), u) *
+                 lagrange(static_cast<int>(2 * kSimpsonQuadUv[i][1]), v);
       }
     EXPECT_NEAR(m[static_cast<std::size_t>(i)][0], exact, 1e-12) << "moment " << i;
   }
@@ -187,9 +190,11 @@ TEST(LinearBasis, FullAndSubstructuringReproduceAClosedRoomAtEveryCornerTo1e8) {
       ASSERT_GT(sol.faces.size(), 100u);
       double worst = 0.0;
       for (const ElementField& f : sol.face_field)
-        for (int k = 0; k < f.corners; ++k) worst = std::max(worst, std::abs(f.radiosity[static_cast<std::size_t>(k)][0] / kRoomB - 1.0));
+        for (int k = 0; k < f.corners; ++k)
+          worst = std::max(worst, std::abs(f.radiosity[static_cast<std::size_t>(k)][0] / kRoomB - 1.0));
       EXPECT_LT(worst, 1e-8) << to_string(method) << " t-junctions " << t_junctions;
-      EXPECT_LT(energy_balance(s, sol).closed_scene_residual[0], 1e-8) << to_string(method) << " t-junctions " << t_junctions;
+      EXPECT_LT(energy_balance(s, sol).closed_scene_residual[0], 1e-8)
+          << to_string(method) << " t-junctions " << t_junctions;
     }
 }
 
@@ -216,7 +221,8 @@ struct LightAboveFloor {
     scene.materials = {material(Rgb::Constant(rho), Rgb::Zero(), "floor"),
                        material(Rgb::Zero(), Rgb::Constant(emission), "light")};
     add_polygon(scene, {{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, 1}}, Vec3(0, 1, 0), 0);
-    add_polygon(scene, {{lx0, height, lz0}, {lx1, height, lz0}, {lx1, height, lz1}, {lx0, height, lz1}}, Vec3(0, -1, 0), 1);
+    add_polygon(scene, {{lx0, height, lz0}, {lx1, height, lz0}, {lx1, height, lz1}, {lx0, height, lz1}}, Vec3(0, -1, 0),
+                1);
   }
   // B(x) on the floor: rho E F(dA_x -> light) (the light reflects nothing back).
   Rgb exact(const Vec3& x) const {

@@ -32,9 +32,9 @@ struct Lines {
 
 // A closed box with a bright ceiling: every method has form factors to compute and light to bounce.
 Scene lit_box() {
-  return test::make_box(1, 1, 1, {test::material(Rgb::Constant(0.5), Rgb::Zero()),
-                                  test::material(Rgb::Constant(0.5), Rgb::Constant(1))},
-                        {0, 1, 0, 0, 0, 0});
+  return test::make_box(
+      1, 1, 1, {test::material(Rgb::Constant(0.5), Rgb::Zero()), test::material(Rgb::Constant(0.5), Rgb::Constant(1))},
+      {0, 1, 0, 0, 0, 0});
 }
 
 SolveSummary solve_with_lines(const Scene& s, SolveOptions options, Lines& out) {

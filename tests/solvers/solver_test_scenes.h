@@ -87,9 +87,12 @@ inline Scene make_faceted_sphere(double r, int rings, int sectors, const Materia
   for (int i = 0; i < rings; ++i)
     for (int j = 0; j < sectors; ++j) {
       std::vector<Vec3> v;
-      if (i == 0) v = {point(0, 0), point(1, j), point(1, j + 1)};
-      else if (i == rings - 1) v = {point(i, j), point(i, j + 1), point(rings, 0)};
-      else v = {point(i, j), point(i, j + 1), point(i + 1, j + 1), point(i + 1, j)};
+      if (i == 0)
+        v = {point(0, 0), point(1, j), point(1, j + 1)};
+      else if (i == rings - 1)
+        v = {point(i, j), point(i, j + 1), point(rings, 0)};
+      else
+        v = {point(i, j), point(i, j + 1), point(i + 1, j + 1), point(i + 1, j)};
       add_polygon(s, v, -polygon_centroid(v), i == 0 ? 1 : 0);
     }
   return s;

@@ -52,8 +52,8 @@ MonteCarloFormFactor monte_carlo_form_factor(std::span<const Vec3> from, std::sp
   std::uint64_t hits = 0;
   for (std::uint64_t s = 0; s < samples; ++s) {
     const double pick = uniform(rng) * acc;
-    const std::size_t k = std::min<std::size_t>(std::lower_bound(cdf.begin(), cdf.end(), pick) - cdf.begin(),
-                                                tris.size() - 1);
+    const std::size_t k =
+        std::min<std::size_t>(std::lower_bound(cdf.begin(), cdf.end(), pick) - cdf.begin(), tris.size() - 1);
     double r1 = uniform(rng), r2 = uniform(rng);
     if (r1 + r2 > 1.0) r1 = 1.0 - r1, r2 = 1.0 - r2;
     const Vec3& a = f[tris[k][0]];

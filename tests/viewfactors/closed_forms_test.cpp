@@ -45,7 +45,8 @@ TEST(ViewFactorClosedForms, BoxesOverAspectRatios) {
       EXPECT_NEAR(m.row_sum(k), 1.0, 1e-10);
       for (int l = 0; l < 6; ++l) {
         const double want = box_factor(k, l, d[0], d[1], d[2]);
-        EXPECT_NEAR(m.factor(k, l), want, std::max(1e-10 * want, 1e-14)) << d[0] << "x" << d[1] << "x" << d[2] << " " << k << "->" << l;
+        EXPECT_NEAR(m.factor(k, l), want, std::max(1e-10 * want, 1e-14))
+            << d[0] << "x" << d[1] << "x" << d[2] << " " << k << "->" << l;
       }
     }
   }

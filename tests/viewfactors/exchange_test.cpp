@@ -27,16 +27,18 @@ double black(double t) { return kStefanBoltzmann * t * t * t * t; }
 TEST(RadiantExchange, PlatesWithReradiatingWalls) {
   for (const double L : {1.0, 1000.0}) {
     const double d = 1.0, e1 = 0.8, e2 = 0.3, t1 = 600.0, t2 = 300.0;
-    Scene s = make_box(L, d, L, {material(Rgb::Constant(1 - e1), Rgb::Zero()), material(Rgb::Constant(1 - e2), Rgb::Zero()),
-                                 material(Rgb::Constant(0.5), Rgb::Zero())},
+    Scene s = make_box(L, d, L,
+                       {material(Rgb::Constant(1 - e1), Rgb::Zero()), material(Rgb::Constant(1 - e2), Rgb::Zero()),
+                        material(Rgb::Constant(0.5), Rgb::Zero())},
                        {0, 1, 2, 2, 2, 2});
     for (std::size_t f = 0; f < s.faces.size(); ++f) s.faces[f].group = f == 0 ? "bottom" : f == 1 ? "top" : "sides";
     const SurfaceUnits units = group_units(s);
     const ViewFactorMatrix m = compute_view_factors(s, units, plain_options());
     ASSERT_EQ(m.n, 3);
-    const RadiantExchange r = solve_radiant_exchange(
-        m, units.emissivity,
-        {{SurfaceCondition::Kind::kTemperature, t1}, {SurfaceCondition::Kind::kTemperature, t2}, {SurfaceCondition::Kind::kHeatFlux, 0.0}});
+    const RadiantExchange r = solve_radiant_exchange(m, units.emissivity,
+                                                     {{SurfaceCondition::Kind::kTemperature, t1},
+                                                      {SurfaceCondition::Kind::kTemperature, t2},
+                                                      {SurfaceCondition::Kind::kHeatFlux, 0.0}});
     const double a1 = L * L, a2 = L * L, ar = 4 * L * d;
     const double f12 = howell_c11(L, L, d), f1r = 1 - f12, f2r = 1 - f12;
     const double space = a1 * f12 + 1 / (1 / (a1 * f1r) + 1 / (a2 * f2r));
@@ -44,7 +46,7 @@ TEST(RadiantExchange, PlatesWithReradiatingWalls) {
     EXPECT_NEAR(r.heat_flux[0], q1, 1e-9 * q1) << L;
     EXPECT_NEAR(r.heat_flux[1] * a2, -q1 * a1, 1e-9 * q1 * a1);  // what the bottom sends, the top receives
     EXPECT_NEAR(r.heat_flux[2], 0.0, 1e-9 * q1);
-    EXPECT_NEAR(r.sky_heat, 0.0, 1e-8 * q1 * a1);                 // closed: nothing leaves
+    EXPECT_NEAR(r.sky_heat, 0.0, 1e-8 * q1 * a1);  // closed: nothing leaves
     // The reradiating walls sit at the temperature their irradiation sets (J = H).
     EXPECT_NEAR(r.radiosity[2], r.irradiation[2], 1e-9 * r.irradiation[2]);
     EXPECT_GT(r.temperature[2], t2);
@@ -68,8 +70,10 @@ TEST(RadiantExchange, PlatesWithReradiatingWalls) {
 // tolerance is twice the faceted inner sphere's relative area deficit.
 TEST(RadiantExchange, ConcentricSpheres) {
   const double r1 = 1.0, r2 = 2.0, e1 = 0.6, e2 = 0.4, t1 = 500.0, t2 = 300.0;
-  Scene outer = make_faceted_sphere(r2, 6, 8, material(Rgb::Constant(1 - e2), Rgb::Zero()), material(Rgb::Constant(1 - e2), Rgb::Zero()));
-  const Scene inner = make_faceted_sphere(r1, 6, 8, material(Rgb::Constant(1 - e1), Rgb::Zero()), material(Rgb::Constant(1 - e1), Rgb::Zero()));
+  Scene outer = make_faceted_sphere(r2, 6, 8, material(Rgb::Constant(1 - e2), Rgb::Zero()),
+                                    material(Rgb::Constant(1 - e2), Rgb::Zero()));
+  const Scene inner = make_faceted_sphere(r1, 6, 8, material(Rgb::Constant(1 - e1), Rgb::Zero()),
+                                          material(Rgb::Constant(1 - e1), Rgb::Zero()));
   const std::size_t outer_faces = outer.faces.size();
   outer.materials.push_back(material(Rgb::Constant(1 - e1), Rgb::Zero()));
   for (const Patch& p : inner.patches) add_polygon(outer, p.vertices, polygon_centroid(p.vertices), 2);  // outward
@@ -77,8 +81,8 @@ TEST(RadiantExchange, ConcentricSpheres) {
   const SurfaceUnits units = group_units(outer);
   ViewFactorMatrix m = compute_view_factors(outer, units, plain_options());
   ASSERT_EQ(m.n, 2);
-  EXPECT_NEAR(m.row_sum(1), 1.0, 1e-9);          // inner: all visible, exact
-  EXPECT_NEAR(m.factor(1, 1), 0.0, 1e-15);       // convex: sees nothing of itself
+  EXPECT_NEAR(m.row_sum(1), 1.0, 1e-9);     // inner: all visible, exact
+  EXPECT_NEAR(m.factor(1, 1), 0.0, 1e-15);  // convex: sees nothing of itself
   const ClosureReport closure = enforce_closure(m);
   EXPECT_LE(closure.max_row_error_after, 1e-12);
   const RadiantExchange r = solve_radiant_exchange(
@@ -88,7 +92,8 @@ TEST(RadiantExchange, ConcentricSpheres) {
   EXPECT_NEAR(r.heat_flux[1] * a1, q, 1e-9 * q);
   EXPECT_NEAR(r.heat_flux[0] * a2, -q, 1e-9 * q);
   const double true_a1 = 4 * std::numbers::pi * r1 * r1;
-  const double sphere = kStefanBoltzmann * true_a1 * (std::pow(t1, 4) - std::pow(t2, 4)) / (1 / e1 + (1 - e2) / e2 * (r1 / r2) * (r1 / r2));
+  const double sphere = kStefanBoltzmann * true_a1 * (std::pow(t1, 4) - std::pow(t2, 4)) /
+                        (1 / e1 + (1 - e2) / e2 * (r1 / r2) * (r1 / r2));
   const double deficit = 1 - a1 / true_a1;
   EXPECT_GT(deficit, 0.0);
   EXPECT_NEAR(r.heat_flux[1] * a1, sphere, 2 * deficit * sphere);
@@ -98,10 +103,12 @@ TEST(RadiantExchange, ConcentricSpheres) {
 // heat at fixed temperatures to 1e-9, on an open model (a box without its ceiling, with a block:
 // sampled pairs, a sky at 250 K); Gebhart's rows sum to 1 (energy) and A_i e_i B_ij is symmetric.
 TEST(RadiantExchange, GebhartAndHottelAgreeWithNetRadiation) {
-  Scene s = make_box(3, 2, 4, {material(Rgb::Constant(0.2), Rgb::Zero()), material(Rgb::Constant(0.7), Rgb::Zero())}, {0, 0, 1, 1, 0, 1});
+  Scene s = make_box(3, 2, 4, {material(Rgb::Constant(0.2), Rgb::Zero()), material(Rgb::Constant(0.7), Rgb::Zero())},
+                     {0, 0, 1, 1, 0, 1});
   s.patches.erase(s.patches.begin() + 1);
   s.faces.erase(s.faces.begin() + 1);
-  for (std::size_t p = 0; p < s.patches.size(); ++p) s.patches[p].face = static_cast<int>(p), s.faces[p].patches = {static_cast<int>(p)};
+  for (std::size_t p = 0; p < s.patches.size(); ++p)
+    s.patches[p].face = static_cast<int>(p), s.faces[p].patches = {static_cast<int>(p)};
   add_block(s, 1.0, 2.0, 0.5, 1.2, 1.0, 2.5, 1);
   const SurfaceUnits units = face_units(s);
   const ViewFactorMatrix m = compute_view_factors(s, units, plain_options());
@@ -123,8 +130,8 @@ TEST(RadiantExchange, GebhartAndHottelAgreeWithNetRadiation) {
     for (int j = 0; j <= m.n; ++j) row += b[i * (m.n + 1) + j];
     EXPECT_NEAR(row, 1.0, 1e-12);
     for (int j = 0; j < m.n; ++j)
-      EXPECT_NEAR(m.area[i] * units.emissivity[i] * b[i * (m.n + 1) + j], m.area[j] * units.emissivity[j] * b[j * (m.n + 1) + i],
-                  1e-12 * m.area[i]);
+      EXPECT_NEAR(m.area[i] * units.emissivity[i] * b[i * (m.n + 1) + j],
+                  m.area[j] * units.emissivity[j] * b[j * (m.n + 1) + i], 1e-12 * m.area[i]);
   }
 }
 

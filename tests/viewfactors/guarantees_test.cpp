@@ -57,7 +57,8 @@ TEST(ViewFactorGuarantees, ObstructedRoom) {
   expect_reciprocal_nonnegative(m);
   for (int u = 0; u < m.n; ++u) {
     EXPECT_NEAR(m.row_sum(u), 1.0, 5 * m.sampling_error[u] + 1e-9) << u;
-    for (int v = 0; v < m.n; ++v) EXPECT_LE(m.factor(u, v), unobstructed(s, units, u, v) * (1 + 1e-9) + 1e-15) << u << " " << v;
+    for (int v = 0; v < m.n; ++v)
+      EXPECT_LE(m.factor(u, v), unobstructed(s, units, u, v) * (1 + 1e-9) + 1e-15) << u << " " << v;
   }
 }
 
@@ -79,7 +80,8 @@ TEST(ViewFactorGuarantees, ExactRegionAgreesWithSampling) {
     EXPECT_EQ(e.sampling_error[u], 0.0);
     EXPECT_NEAR(e.row_sum(u), 1.0, 2e-3) << u;
     for (int v = 0; v < m.n; ++v)
-      EXPECT_NEAR(e.factor(u, v), m.factor(u, v), 5 * m.sampling_error[u] + 1e-3 * m.factor(u, v) + 1e-12) << u << " " << v;
+      EXPECT_NEAR(e.factor(u, v), m.factor(u, v), 5 * m.sampling_error[u] + 1e-3 * m.factor(u, v) + 1e-12)
+          << u << " " << v;
   }
 }
 
@@ -93,7 +95,8 @@ TEST(ViewFactorGuarantees, IndependentOfUnitOfLength) {
     const Scene t = scaled(s, scale);
     const ViewFactorMatrix n = compute_view_factors(t, face_units(t), plain_options());
     for (int u = 0; u < m.n; ++u)
-      for (int v = 0; v < m.n; ++v) EXPECT_NEAR(n.factor(u, v), m.factor(u, v), 1e-12 + 1e-12 * m.factor(u, v)) << scale;
+      for (int v = 0; v < m.n; ++v)
+        EXPECT_NEAR(n.factor(u, v), m.factor(u, v), 1e-12 + 1e-12 * m.factor(u, v)) << scale;
   }
 }
 
@@ -122,7 +125,8 @@ TEST(ViewFactorGuarantees, RowErrorBudgetClosesRows) {
   const ViewFactorMatrix m = compute_view_factors(s, face_units(s), options);
   ASSERT_GT(m.counters.partial, 0u);
   expect_reciprocal_nonnegative(m);
-  for (int u = 0; u < m.n; ++u) EXPECT_NEAR(m.row_sum(u), 1.0, 4 * std::max(options.row_error, m.sampling_error[u])) << u;
+  for (int u = 0; u < m.n; ++u)
+    EXPECT_NEAR(m.row_sum(u), 1.0, 4 * std::max(options.row_error, m.sampling_error[u])) << u;
   options.threads = 2;
   const ViewFactorMatrix b = compute_view_factors(s, face_units(s), options);
   EXPECT_EQ(m.column, b.column);
@@ -205,8 +209,10 @@ TEST(ViewFactorGuarantees, ThresholdBoundCoversSkippedFactors) {
     double lost = 0.0;
     for (int v = 0; v < full.n; ++v) {
       const double f = full.factor(u, v), g = cut.factor(u, v);
-      if (g != 0.0) EXPECT_EQ(f, g);
-      else lost += f;
+      if (g != 0.0)
+        EXPECT_EQ(f, g);
+      else
+        lost += f;
       if (g == 0.0 && f > 0.0) EXPECT_LT(f, pruned.threshold + 5 * full.sampling_error[u]);
     }
     EXPECT_LE(lost, cut.skipped_bound[u] + 5 * full.sampling_error[u] + 1e-15) << u;

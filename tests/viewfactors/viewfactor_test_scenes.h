@@ -15,7 +15,9 @@ namespace hrad::test {
 /// cut in four is a sliver (`sliver` of the side). Each piece faces `towards`.
 inline void add_cut_rectangle(Scene& s, const Vec3& origin, const Vec3& u, const Vec3& v, const Vec3& towards, int cuts,
                               detail::Rng& rng, double sliver = 1e-4) {
-  struct Rect { double u0, u1, v0, v1; };
+  struct Rect {
+    double u0, u1, v0, v1;
+  };
   std::vector<Rect> pieces = {{0, 1, 0, 1}};
   for (int k = 0; k < cuts; ++k) {
     const std::size_t i = rng.below(pieces.size());
@@ -23,13 +25,17 @@ inline void add_cut_rectangle(Scene& s, const Vec3& origin, const Vec3& u, const
     const bool along_u = rng.uniform() < 0.5;
     const double t = rng.uniform() < 0.25 ? sliver : 0.2 + 0.6 * rng.uniform();
     Rect a = r, b = r;
-    if (along_u) a.u1 = b.u0 = r.u0 + t * (r.u1 - r.u0);
-    else a.v1 = b.v0 = r.v0 + t * (r.v1 - r.v0);
+    if (along_u)
+      a.u1 = b.u0 = r.u0 + t * (r.u1 - r.u0);
+    else
+      a.v1 = b.v0 = r.v0 + t * (r.v1 - r.v0);
     pieces[i] = a;
     pieces.push_back(b);
   }
   for (const Rect& r : pieces)
-    add_polygon(s, {origin + r.u0 * u + r.v0 * v, origin + r.u1 * u + r.v0 * v, origin + r.u1 * u + r.v1 * v, origin + r.u0 * u + r.v1 * v},
+    add_polygon(s,
+                {origin + r.u0 * u + r.v0 * v, origin + r.u1 * u + r.v0 * v, origin + r.u1 * u + r.v1 * v,
+                 origin + r.u0 * u + r.v1 * v},
                 towards, 0);
 }
 
@@ -39,12 +45,12 @@ inline Scene make_cut_box(double a, double b, double c, int cuts, std::uint64_t 
   s.materials = {material(Rgb::Constant(0.5), Rgb::Zero())};
   detail::Rng rng(seed);
   const Vec3 X(a, 0, 0), Y(0, b, 0), Z(0, 0, c), O = Vec3::Zero();
-  add_cut_rectangle(s, O, X, Z, Y, cuts, rng, sliver);      // floor y = 0
-  add_cut_rectangle(s, Y, X, Z, -Y, cuts, rng, sliver);     // ceiling
-  add_cut_rectangle(s, O, Y, Z, X, cuts, rng, sliver);      // x = 0
-  add_cut_rectangle(s, X, Y, Z, -X, cuts, rng, sliver);     // x = a
-  add_cut_rectangle(s, O, X, Y, Z, cuts, rng, sliver);      // z = 0
-  add_cut_rectangle(s, Z, X, Y, -Z, cuts, rng, sliver);     // z = c
+  add_cut_rectangle(s, O, X, Z, Y, cuts, rng, sliver);   // floor y = 0
+  add_cut_rectangle(s, Y, X, Z, -Y, cuts, rng, sliver);  // ceiling
+  add_cut_rectangle(s, O, Y, Z, X, cuts, rng, sliver);   // x = 0
+  add_cut_rectangle(s, X, Y, Z, -X, cuts, rng, sliver);  // x = a
+  add_cut_rectangle(s, O, X, Y, Z, cuts, rng, sliver);   // z = 0
+  add_cut_rectangle(s, Z, X, Y, -Z, cuts, rng, sliver);  // z = c
   return s;
 }
 

@@ -14,8 +14,7 @@ namespace hrad::test {
 namespace {
 
 // The unit cube's vertices and six inward surfaces (make_box order: y=0, y=1, x=0, x=1, z=0, z=1).
-const char* kCubeVertices =
-    "V 1 0 0 0\nV 2 1 0 0\nV 3 1 1 0\nV 4 0 1 0\nV 5 0 0 1\nV 6 1 0 1\nV 7 1 1 1\nV 8 0 1 1\n";
+const char* kCubeVertices = "V 1 0 0 0\nV 2 1 0 0\nV 3 1 1 0\nV 4 0 1 0\nV 5 0 0 1\nV 6 1 0 1\nV 7 1 1 1\nV 8 0 1 1\n";
 
 std::string header(const std::string& control = "encl=0 list=0 eps=1.0e-4 maxU=8 maxO=8 minO=0 row=0 col=0 emit=0") {
   return "T test enclosure\nC " + control + "\nF 3\n";
@@ -44,7 +43,9 @@ TEST(Vs3, CombinedSurfacesAreOneRow) {
   for (int i = 0; i < 6; ++i) {
     EXPECT_NEAR(m.row_sum(i), 1.0, 1e-10);
     for (int j = 0; j < 6; ++j)
-      if (j != i) EXPECT_NEAR(m.factor(i, j), opposite[i] == j ? howell_c11(1, 1, 1) : howell_c14(1, 1, 1), 1e-10) << i << " " << j;
+      if (j != i)
+        EXPECT_NEAR(m.factor(i, j), opposite[i] == j ? howell_c11(1, 1, 1) : howell_c14(1, 1, 1), 1e-10)
+            << i << " " << j;
   }
 }
 
@@ -60,10 +61,11 @@ TEST(Vs3, MasksNullsAndObstructions) {
   const std::string extra_vertices =
       "V 9 1 0.25 0.25\nV 10 1 0.75 0.25\nV 11 1 0.75 0.75\nV 12 1 0.25 0.75\n"
       "V 13 0.25 1 0.25\nV 14 0.75 1 0.25\nV 15 0.75 1 0.75\nV 16 0.25 1 0.75\n";
-  const Vs3Model plain = read_vs3(dir.write("plain.vs3", header() + kCubeVertices + extra_vertices + surfaces + "End\n"));
-  const Vs3Model holed = read_vs3(dir.write(
-      "holed.vs3", header() + kCubeVertices + extra_vertices + surfaces +
-                       "M 7 9 12 11 10 4 0 0.5 window\nN 8 13 14 15 16 2 0 1 skylight\nEnd\n"));
+  const Vs3Model plain =
+      read_vs3(dir.write("plain.vs3", header() + kCubeVertices + extra_vertices + surfaces + "End\n"));
+  const Vs3Model holed =
+      read_vs3(dir.write("holed.vs3", header() + kCubeVertices + extra_vertices + surfaces +
+                                          "M 7 9 12 11 10 4 0 0.5 window\nN 8 13 14 15 16 2 0 1 skylight\nEnd\n"));
   ASSERT_EQ(plain.units.size(), 6);
   ASSERT_EQ(holed.units.size(), 7);  // the null surface has no row
   EXPECT_NEAR(holed.units.area[3], 0.75, 1e-15);
@@ -77,10 +79,10 @@ TEST(Vs3, MasksNullsAndObstructions) {
     EXPECT_NEAR(1.0 - b.row_sum(i), a.factor(i, 1) - b.factor(i, 1), 1e-10) << i;
   }
   // An obstruction-only partition at x = 0.5 across the whole box: no row, and nothing crosses it.
-  const Vs3Model split = read_vs3(dir.write(
-      "split.vs3", header() + kCubeVertices + "V 9 0.5 0 0\nV 10 0.5 1 0\nV 11 0.5 1 1\nV 12 0.5 0 1\n" +
-                       "S 1 1 5 6 2 0 0 0.9 floor\nS 2 4 3 7 8 0 0 0.9 ceiling\nS 3 1 4 8 5 0 0 0.9 west\n"
-                       "S 4 2 6 7 3 0 0 0.9 east\nO 5 9 10 11 12 0 0 0.9 partition\nEnd\n"));
+  const Vs3Model split = read_vs3(
+      dir.write("split.vs3", header() + kCubeVertices + "V 9 0.5 0 0\nV 10 0.5 1 0\nV 11 0.5 1 1\nV 12 0.5 0 1\n" +
+                                 "S 1 1 5 6 2 0 0 0.9 floor\nS 2 4 3 7 8 0 0 0.9 ceiling\nS 3 1 4 8 5 0 0 0.9 west\n"
+                                 "S 4 2 6 7 3 0 0 0.9 east\nO 5 9 10 11 12 0 0 0.9 partition\nEnd\n"));
   ASSERT_EQ(split.units.size(), 4);
   const ViewFactorMatrix s = compute_view_factors(split.scene, split.units, plain_options());
   EXPECT_EQ(s.factor(2, 3), 0.0);

@@ -32,7 +32,7 @@ TEST(Classify, FacingPairsWithoutOccluderAreFullyVisible) {
 
 TEST(Classify, FacingAway) {
   Scene s = empty_scene();
-  const auto up_at_1 = square_z(0, 1, 0, 1, 1, true);      // B's back toward the floor
+  const auto up_at_1 = square_z(0, 1, 0, 1, 1, true);  // B's back toward the floor
   const auto up_at_2 = square_z(0, 1, 0, 1, 2, true);
   const auto side = std::vector<Vec3>{{2, 0, 0}, {2, 1, 0}, {2, 1, 1}, {2, 0, 1}};  // x = 2, front +x: away
   const auto coplanar = square_z(2, 3, 0, 1, 0, true);
@@ -145,7 +145,9 @@ TEST(Classify, AgreesWithSampledRaysOnRandomScenes) {
   int counts[4] = {0, 0, 0, 0};
   for (int scene_id = 0; scene_id < 40; ++scene_id) {
     Scene s = empty_scene();
-    auto rv = [&](double lo, double hi) { return Vec3(lo + (hi - lo) * u(rng), lo + (hi - lo) * u(rng), lo + (hi - lo) * u(rng)); };
+    auto rv = [&](double lo, double hi) {
+      return Vec3(lo + (hi - lo) * u(rng), lo + (hi - lo) * u(rng), lo + (hi - lo) * u(rng));
+    };
     // A: triangle near z = 0 facing up; B: triangle near z = 1 facing down; occluders between.
     std::vector<Vec3> a{rv(0, 1), rv(0, 1), rv(0, 1)}, b{rv(0, 1), rv(0, 1), rv(0, 1)};
     for (Vec3& p : a) p.z() *= 0.1;
@@ -157,8 +159,9 @@ TEST(Classify, AgreesWithSampledRaysOnRandomScenes) {
     for (int k = 0; k < occluders; ++k) {
       const Vec3 c = rv(0, 1);
       const double r = 0.1 + 1.4 * u(rng);
-      add_patch(s, {Vec3(c.x() - r, c.y() - r, 0.2 + 0.6 * c.z()), Vec3(c.x() + r, c.y() - r, 0.2 + 0.6 * c.z() + 0.1 * u(rng)),
-                    Vec3(c.x(), c.y() + r, 0.2 + 0.6 * c.z())});
+      add_patch(
+          s, {Vec3(c.x() - r, c.y() - r, 0.2 + 0.6 * c.z()),
+              Vec3(c.x() + r, c.y() - r, 0.2 + 0.6 * c.z() + 0.1 * u(rng)), Vec3(c.x(), c.y() + r, 0.2 + 0.6 * c.z())});
     }
     const auto v = make_visibility(s);
     const PairClass c = v->classify(a, ia, b, ib);
@@ -166,9 +169,15 @@ TEST(Classify, AgreesWithSampledRaysOnRandomScenes) {
     int free_rays = 0, blocked_rays = 0;
     for (int i = 0; i < 2000; ++i) {
       double s1 = u(rng), s2 = u(rng);
-      if (s1 + s2 > 1) { s1 = 1 - s1; s2 = 1 - s2; }
+      if (s1 + s2 > 1) {
+        s1 = 1 - s1;
+        s2 = 1 - s2;
+      }
       double t1 = u(rng), t2 = u(rng);
-      if (t1 + t2 > 1) { t1 = 1 - t1; t2 = 1 - t2; }
+      if (t1 + t2 > 1) {
+        t1 = 1 - t1;
+        t2 = 1 - t2;
+      }
       const Vec3 pa = a[0] + s1 * (a[1] - a[0]) + s2 * (a[2] - a[0]);
       const Vec3 pb = b[0] + t1 * (b[1] - b[0]) + t2 * (b[2] - b[0]);
       // Classification speaks for mutually facing pairs only.

@@ -42,8 +42,8 @@ TEST(VisibleRegion, ParallelOccluderCastsTheScaledSquare) {
   EXPECT_EQ(r.area_fraction, 0.75);  // 1 - (1/2)^2
   ASSERT_EQ(r.pieces.size(), 1u);
   ASSERT_EQ(r.pieces[0].holes.size(), 1u);
-  EXPECT_NEAR(ring_area(r.pieces[0].outer), 1.0, 1e-15);         // counter-clockwise from the front
-  EXPECT_EQ(ring_area(r.pieces[0].holes[0]), -0.25);              // clockwise
+  EXPECT_NEAR(ring_area(r.pieces[0].outer), 1.0, 1e-15);  // counter-clockwise from the front
+  EXPECT_EQ(ring_area(r.pieces[0].holes[0]), -0.25);      // clockwise
   for (const Vec3& p : r.pieces[0].holes[0]) {
     EXPECT_EQ(std::abs(p.x() - 0.5), 0.25);
     EXPECT_EQ(std::abs(p.y() - 0.5), 0.25);
@@ -55,9 +55,9 @@ TEST(VisibleRegion, OnlyThePartInsideThePyramidCounts) {
   Scene s = empty_scene();
   const int src = add_patch(s, kSource);
   add_patch(s, square_z(0.625, 1.5, 0.375, 0.625, 1, false));  // shadow [0.75, 1] x [0.25, 0.75]: 1/8
-  add_patch(s, square_z(-3, 3, -3, 3, -1, true));         // behind the source
-  add_patch(s, square_z(-3, 3, -3, 3, 3, false));         // behind the eye
-  add_patch(s, square_z(-3, 3, -3, 3, 0, true));          // coplanar with the source (touches it)
+  add_patch(s, square_z(-3, 3, -3, 3, -1, true));              // behind the source
+  add_patch(s, square_z(-3, 3, -3, 3, 3, false));              // behind the eye
+  add_patch(s, square_z(-3, 3, -3, 3, 0, true));               // coplanar with the source (touches it)
   add_patch(s, {{0.5, -1, 2}, {0.5, 2, 2}, {0.5, 0.5, 2.5}});  // through the eye: projects to a line
   const VisibleRegion r = visible_region(s, kEye, -1, kSource, src);
   EXPECT_EQ(r.area_fraction, 0.875);
@@ -104,8 +104,8 @@ Scene random_occluders(std::uint64_t seed, int count) {
   for (int i = 0; i < count; ++i) {
     const Vec3 c(u(rng), u(rng), 0.2 + 1.5 * u(rng));
     const double r = 0.15 + 0.35 * u(rng);
-    add_patch(s, {c + r * Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5) * 2, c + r * Vec3(u(rng), -u(rng), u(rng) - 0.5),
-                  c + r * Vec3(-u(rng), u(rng), u(rng) - 0.5)});
+    add_patch(s, {c + r * Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5) * 2,
+                  c + r * Vec3(u(rng), -u(rng), u(rng) - 0.5), c + r * Vec3(-u(rng), u(rng), u(rng) - 0.5)});
   }
   return s;
 }

@@ -62,16 +62,21 @@ std::vector<int> add_wall(Scene& s, int axis, bool high, int cells_u, int cells_
   for (std::size_t i = 0; i + 1 < cu.size(); ++i)
     for (std::size_t j = 0; j + 1 < cv.size(); ++j) {
       const Vec3 &p00 = grid[i][j], &p10 = grid[i + 1][j], &p11 = grid[i + 1][j + 1], &p01 = grid[i][j + 1];
-      if (coin(rng)) { tri(p00, p10, p11); tri(p00, p11, p01); }
-      else { tri(p00, p10, p01); tri(p10, p11, p01); }
+      if (coin(rng)) {
+        tri(p00, p10, p11);
+        tri(p00, p11, p01);
+      } else {
+        tri(p00, p10, p01);
+        tri(p10, p11, p01);
+      }
     }
   return ids;
 }
 
 struct LeakBox {
   Scene scene;
-  std::vector<int> inside;      ///< the box's wall triangles (fronts inside)
-  std::vector<int> emitters;    ///< quads outside, facing the box
+  std::vector<int> inside;    ///< the box's wall triangles (fronts inside)
+  std::vector<int> emitters;  ///< quads outside, facing the box
 };
 
 LeakBox make_leak_box(std::uint64_t seed) {
@@ -85,7 +90,8 @@ LeakBox make_leak_box(std::uint64_t seed) {
       b.inside.insert(b.inside.end(), ids.begin(), ids.end());
     }
   // Emitters outside: one left of the box facing +x, one above facing -z, one diagonal.
-  b.emitters.push_back(add_patch(b.scene, {{-0.5, -0.2, -0.2}, {-0.5, 1.5, -0.2}, {-0.5, 1.5, 1.1}, {-0.5, -0.2, 1.1}}));
+  b.emitters.push_back(
+      add_patch(b.scene, {{-0.5, -0.2, -0.2}, {-0.5, 1.5, -0.2}, {-0.5, 1.5, 1.1}, {-0.5, -0.2, 1.1}}));
   b.emitters.push_back(add_patch(b.scene, {{-0.2, -0.2, 1.6}, {-0.2, 1.5, 1.6}, {0.9, 1.5, 1.6}, {0.9, -0.2, 1.6}}));
   b.emitters.push_back(add_patch(b.scene, {{1.5, 1.9, 1.4}, {1.5, 2.4, 1.4}, {1.2, 2.4, 1.9}}));
   return b;
@@ -102,7 +108,8 @@ TEST(Leak, EverySegmentFromOutsideToInsideIsBlocked) {
       const auto& q = box.scene.patches[e].vertices;
       for (int i = 0; i < 3000; ++i) {
         // A point on the emitter (vertices included) to a point inside the box.
-        const Vec3 from = i < static_cast<int>(q.size()) ? q[i] : q[0] + u(rng) * (q[1] - q[0]) + u(rng) * (q.back() - q[0]) * 0.5;
+        const Vec3 from =
+            i < static_cast<int>(q.size()) ? q[i] : q[0] + u(rng) * (q[1] - q[0]) + u(rng) * (q.back() - q[0]) * 0.5;
         ASSERT_TRUE(v->segment_blocked(from, e, inside_point(), -1)) << "seed " << seed;
       }
     }
@@ -144,7 +151,8 @@ TEST(Leak, ARemovedTriangleLetsLightIn) {
   double light = 0.0;
   for (int p : box.inside)
     light += v->estimate(box.scene.patches[box.emitters[0]].vertices, box.emitters[0], box.scene.patches[p].vertices, p,
-                         256, 1).fraction;
+                         256, 1)
+                 .fraction;
   EXPECT_GT(light, 0.0);
 }
 

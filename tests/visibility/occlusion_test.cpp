@@ -31,8 +31,10 @@ void add_box(Scene& s, double sx, double sy, double sz, int k = 1) {
             return p;
           };
           // (u, v, axis) is right-handed: counter-clockwise in (u, v) faces +axis.
-          if (high) add_patch(s, {at(0, 0), at(0, 1), at(1, 1), at(1, 0)});
-          else add_patch(s, {at(0, 0), at(1, 0), at(1, 1), at(0, 1)});
+          if (high)
+            add_patch(s, {at(0, 0), at(0, 1), at(1, 1), at(1, 0)});
+          else
+            add_patch(s, {at(0, 0), at(1, 0), at(1, 1), at(0, 1)});
         }
     }
 }

@@ -177,7 +177,10 @@ TEST(SegmentBlocked, AgreesWithFloatingPointReferenceAwayFromDegeneracies) {
     bool trusted = true;
     for (const auto& t : tris) {
       const int r = reference_hit(a, b, t[0], t[1], t[2], 1e-6);
-      if (r < 0) { trusted = false; break; }
+      if (r < 0) {
+        trusted = false;
+        break;
+      }
       expected |= r;
     }
     if (!trusted) continue;
@@ -216,7 +219,8 @@ TEST(SegmentBlocked, CompactHierarchyAndCgalTreeAgree) {
     int blocked = 0;
     for (int i = 0; i < 4000; ++i) {
       const Vec3 a = gv(), b = gv();
-      const int pa = i % 3 == 0 ? -1 : int(rng() % s.patches.size()), pb = i % 5 == 0 ? -1 : int(rng() % s.patches.size());
+      const int pa = i % 3 == 0 ? -1 : int(rng() % s.patches.size()),
+                pb = i % 5 == 0 ? -1 : int(rng() % s.patches.size());
       const bool x = compact->segment_blocked(a, pa, b, pb);
       ASSERT_EQ(x, cgal->segment_blocked(a, pa, b, pb)) << scene_id << " " << i;
       blocked += x;

@@ -16,9 +16,11 @@ struct Cell {
   Vec3 mass_centre = Vec3::Zero();
   double mass = 0.0;
   std::array<int, 8> child{-1, -1, -1, -1, -1, -1, -1, -1};
-  std::vector<int> bodies;     ///< leaves only
-  bool leaf() const { return child[0] < 0 && child[1] < 0 && child[2] < 0 && child[3] < 0 && child[4] < 0 &&
-                             child[5] < 0 && child[6] < 0 && child[7] < 0; }
+  std::vector<int> bodies;  ///< leaves only
+  bool leaf() const {
+    return child[0] < 0 && child[1] < 0 && child[2] < 0 && child[3] < 0 && child[4] < 0 && child[5] < 0 &&
+           child[6] < 0 && child[7] < 0;
+  }
 };
 
 constexpr int kMaxDepth = 40;

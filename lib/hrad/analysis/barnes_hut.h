@@ -53,9 +53,9 @@ struct BarnesHutSample {
   double theta = 0.0;
   double mean_interactions = 0.0;
   std::size_t max_interactions = 0;
-  double naive_interactions = 0.0;    ///< n - 1 per body
-  double relative_force_error = -1;   ///< against the direct sum; -1 when n > direct_limit
-  double seconds = 0.0;               ///< tree build + walk
+  double naive_interactions = 0.0;   ///< n - 1 per body
+  double relative_force_error = -1;  ///< against the direct sum; -1 when n > direct_limit
+  double seconds = 0.0;              ///< tree build + walk
 };
 
 /// For every n and theta: bodies from random_bodies(n, seed), interaction counts and (for

@@ -28,7 +28,9 @@ Vec2 stratum_point(SampleLayout layout, int patch, std::uint64_t stratum) {
 void sample_triangle(const Vec3& a, const Vec3& b, const Vec3& c, int m, int patch, SampleLayout layout,
                      std::size_t first, std::vector<SurfaceSample>* out) {
   const double area = 0.5 * (b - a).cross(c - a).norm() / (static_cast<double>(m) * m);
-  auto grid = [&](int i, int j) { return Vec3(a + (static_cast<double>(i) / m) * (b - a) + (static_cast<double>(j) / m) * (c - a)); };
+  auto grid = [&](int i, int j) {
+    return Vec3(a + (static_cast<double>(i) / m) * (b - a) + (static_cast<double>(j) / m) * (c - a));
+  };
   // A point of triangle (p, q, r): its centroid, or a uniform one (Turk 1990's square-root map).
   auto point = [&](const Vec3& p, const Vec3& q, const Vec3& r) {
     if (layout == SampleLayout::centres) return Vec3((p + q + r) / 3.0);
@@ -65,7 +67,8 @@ std::vector<SurfaceSample> patch_samples(const Scene& scene, int samples_per_pat
         }
     } else {
       const std::size_t first = out.size();
-      for (std::size_t k = 1; k + 1 < v.size(); ++k) sample_triangle(v[0], v[k], v[k + 1], m, patch, layout, first, &out);
+      for (std::size_t k = 1; k + 1 < v.size(); ++k)
+        sample_triangle(v[0], v[k], v[k + 1], m, patch, layout, first, &out);
     }
   }
   return out;
@@ -277,7 +280,8 @@ ErrorMetrics compare_at_samples(const Scene& scene, std::span<const SurfaceSampl
   m.relative_linf = ratio(max_err, max_ref);
   m.rms_absolute = area > 0.0 ? std::sqrt(err / area) : 0.0;
   m.patch_relative_l2.resize(scene.patches.size());
-  for (std::size_t p = 0; p < scene.patches.size(); ++p) m.patch_relative_l2[p] = std::sqrt(ratio(patch_err[p], patch_ref[p]));
+  for (std::size_t p = 0; p < scene.patches.size(); ++p)
+    m.patch_relative_l2[p] = std::sqrt(ratio(patch_err[p], patch_ref[p]));
   return m;
 }
 
@@ -308,8 +312,8 @@ EnergyBalance energy_balance(const Scene& scene, const Solution& solution) {
     e.radiosity_power += a * b;
     for (int c = 0; c < 3; ++c) {
       const double rho = mat.reflectance[c];
-      e.absorbed_power[c] += rho > 0.0 ? a * (1.0 - rho) / rho * (b[c] - mat.emission[c])
-                                       : std::numeric_limits<double>::quiet_NaN();
+      e.absorbed_power[c] +=
+          rho > 0.0 ? a * (1.0 - rho) / rho * (b[c] - mat.emission[c]) : std::numeric_limits<double>::quiet_NaN();
     }
   }
   for (int c = 0; c < 3; ++c)

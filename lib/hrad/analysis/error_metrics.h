@@ -25,8 +25,8 @@
 // with Field::interpolated it is the displayed field, the vertex_radiosity interpolated linearly
 // over the leaf's polygon fanned from its first vertex into triangles, as the rasterizer draws it
 // (Gouraud). The leaf is found (point in convex polygon in the patch's plane, with a relative
-// tolerance of 1e-6 of the patch size, which covers float-rounded PLY vertices); when none does (a gap in the mesh), the
-// leaf whose nearest edge is least violated is used and the sample counts as `unmatched`.
+// tolerance of 1e-6 of the patch size, which covers float-rounded PLY vertices); when none does (a gap in the mesh),
+// the leaf whose nearest edge is least violated is used and the sample counts as `unmatched`.
 //
 // Definitions (|.| is the Euclidean norm over the three channels, w_k the sample areas):
 //   relative_l2   = sqrt( sum_k w_k |B(x_k) - Bref(x_k)|^2 / sum_k w_k |Bref(x_k)|^2 )
@@ -69,11 +69,11 @@ enum class Field { constant, interpolated };
 struct ErrorMetrics {
   double relative_l2 = 0.0;
   double relative_linf = 0.0;
-  double rms_absolute = 0.0;               ///< sqrt(sum w |B - Bref|^2 / sum w)
-  std::vector<double> patch_relative_l2;   ///< per Scene patch
-  std::vector<double> face_relative_l2;    ///< per face of the evaluated solution
+  double rms_absolute = 0.0;              ///< sqrt(sum w |B - Bref|^2 / sum w)
+  std::vector<double> patch_relative_l2;  ///< per Scene patch
+  std::vector<double> face_relative_l2;   ///< per face of the evaluated solution
   std::size_t samples = 0;
-  std::size_t unmatched = 0;               ///< samples no leaf contained (in either solution)
+  std::size_t unmatched = 0;  ///< samples no leaf contained (in either solution)
 };
 
 /// Error of `solution` against `reference` (both on `scene`'s patches, any meshes).
@@ -123,8 +123,8 @@ class SolutionSampler {
 };
 
 struct EnergyBalance {
-  Rgb emitted_power = Rgb::Zero();   ///< sum over patches of A E
-  Rgb radiosity_power = Rgb::Zero(); ///< sum over leaves of A B (power leaving all surfaces)
+  Rgb emitted_power = Rgb::Zero();    ///< sum over patches of A E
+  Rgb radiosity_power = Rgb::Zero();  ///< sum over leaves of A B (power leaving all surfaces)
   /// sum over leaves of A (1 - rho)/rho (B - E): the power absorbed, since B = E + rho H gives the
   /// irradiance H = (B - E)/rho and a surface absorbs (1 - rho) H per unit area. NaN in a channel
   /// where some leaf has rho = 0 (its irradiance is then not recoverable from B).

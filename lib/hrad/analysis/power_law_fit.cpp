@@ -25,13 +25,16 @@ struct LogResidual {
 
 double PowerLawFit::predict(double x) const { return a * std::pow(x, b); }
 
-PowerLawFit fit_power_law(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& weights) {
+PowerLawFit fit_power_law(const std::vector<double>& x, const std::vector<double>& y,
+                          const std::vector<double>& weights) {
   if (x.size() != y.size()) throw Error(fmt::format("power-law fit: {} x values but {} y values", x.size(), y.size()));
   if (!weights.empty() && weights.size() != x.size())
     throw Error(fmt::format("power-law fit: {} weights for {} points", weights.size(), x.size()));
   for (std::size_t i = 0; i < x.size(); ++i) {
-    if (!(x[i] > 0.0 && std::isfinite(x[i]))) throw Error(fmt::format("power-law fit: x[{}] = {} is not positive", i, x[i]));
-    if (!(y[i] > 0.0 && std::isfinite(y[i]))) throw Error(fmt::format("power-law fit: y[{}] = {} is not positive", i, y[i]));
+    if (!(x[i] > 0.0 && std::isfinite(x[i])))
+      throw Error(fmt::format("power-law fit: x[{}] = {} is not positive", i, x[i]));
+    if (!(y[i] > 0.0 && std::isfinite(y[i])))
+      throw Error(fmt::format("power-law fit: y[{}] = {} is not positive", i, y[i]));
     if (!weights.empty() && !(weights[i] > 0.0 && std::isfinite(weights[i])))
       throw Error(fmt::format("power-law fit: weight[{}] = {} is not positive", i, weights[i]));
   }

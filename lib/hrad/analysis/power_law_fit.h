@@ -14,14 +14,14 @@
 namespace hrad {
 
 struct PowerLawFit {
-  double a = 0.0, b = 0.0;                ///< y ~ a x^b
-  double a_stderr = 0.0, b_stderr = 0.0;  ///< one standard error
-  double log_a = 0.0, log_a_stderr = 0.0; ///< ln a and its standard error
+  double a = 0.0, b = 0.0;                 ///< y ~ a x^b
+  double a_stderr = 0.0, b_stderr = 0.0;   ///< one standard error
+  double log_a = 0.0, log_a_stderr = 0.0;  ///< ln a and its standard error
   double covariance_log_a_b = 0.0;
-  double rms_log_residual = 0.0;          ///< sqrt(weighted RSS / sum w), in ln units
+  double rms_log_residual = 0.0;  ///< sqrt(weighted RSS / sum w), in ln units
   int points = 0;
   bool converged = false;
-  std::string message;                    ///< Ceres' report when not converged
+  std::string message;  ///< Ceres' report when not converged
 
   double predict(double x) const;
 };

@@ -24,23 +24,24 @@ struct Patch {
   std::vector<Vec3> vertices;  ///< 3 or 4 vertices, counter-clockwise seen from the front
   Vec3 normal = Vec3::Zero();
   double area = 0.0;
-  int material = -1;           ///< index into Scene::materials
-  int face = -1;               ///< index of the input face it came from (a face may give several patches)
-  std::string group;           ///< the `o`/`g` name of the input face
+  int material = -1;  ///< index into Scene::materials
+  int face = -1;      ///< index of the input face it came from (a face may give several patches)
+  std::string group;  ///< the `o`/`g` name of the input face
 };
 
 /// One face of the input file, in file order (reports list radiosity per face).
 struct InputFace {
   std::string group;
   int material = -1;
-  std::size_t line = 0;        ///< line of the `f` statement in the scene file
+  std::size_t line = 0;  ///< line of the `f` statement in the scene file
   double area = 0.0;
-  std::vector<int> patches;    ///< the patches it became (one unless it was split)
+  std::vector<int> patches;  ///< the patches it became (one unless it was split)
 };
 
 struct Scene {
-  std::string path;            ///< the file it was read from, for messages
-  std::vector<std::string> files;  ///< every file read to make it (scene, material libraries): outputs must not replace them
+  std::string path;  ///< the file it was read from, for messages
+  std::vector<std::string>
+      files;  ///< every file read to make it (scene, material libraries): outputs must not replace them
   std::vector<Material> materials;
   std::vector<Patch> patches;
   std::vector<InputFace> faces;

@@ -26,14 +26,14 @@ struct ElementField {
 Rgb element_field_at(const ElementField& e, const Vec3& x);
 
 struct Solution {
-  std::vector<Vec3> vertices;            ///< leaf-mesh vertex positions
-  std::vector<Rgb> vertex_radiosity;     ///< per vertex, for display (anchored at T-vertices, no cracks)
-  std::vector<std::vector<int>> faces;   ///< leaf elements, counter-clockwise vertex ids (T-vertices included)
-  std::vector<int> face_patch;           ///< the patch (index into Scene::patches) each leaf lies on
-  std::vector<Rgb> face_radiosity;       ///< constant radiosity of each leaf element (the unknowns), or its mean
+  std::vector<Vec3> vertices;           ///< leaf-mesh vertex positions
+  std::vector<Rgb> vertex_radiosity;    ///< per vertex, for display (anchored at T-vertices, no cracks)
+  std::vector<std::vector<int>> faces;  ///< leaf elements, counter-clockwise vertex ids (T-vertices included)
+  std::vector<int> face_patch;          ///< the patch (index into Scene::patches) each leaf lies on
+  std::vector<Rgb> face_radiosity;      ///< constant radiosity of each leaf element (the unknowns), or its mean
   /// Per face, the linear basis's field (its mean is face_radiosity); empty with the constant basis.
   std::vector<ElementField> face_field;
-  std::vector<Rgb> patch_radiosity;      ///< area-weighted mean radiosity of each patch
+  std::vector<Rgb> patch_radiosity;  ///< area-weighted mean radiosity of each patch
   /// Optional, for figures: each link of a hierarchical solve as the segment between the centroids
   /// of its receiver and source elements (empty unless SolveOptions::record_links).
   std::vector<std::pair<Vec3, Vec3>> link_segments;

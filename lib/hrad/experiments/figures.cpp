@@ -93,8 +93,8 @@ std::vector<CostRow> cost_rows(const Scene& scene, const CostOptions& options, c
     const double value = parameter == "aeps" ? o.aeps : o.max_area;
     report(progress, fmt::format("figure 1: {} {}={:.4g}", to_string(o.method), parameter, value));
     const SolveSummary s = solve(scene, o, nullptr);
-    rows.push_back({std::string(to_string(o.method)), parameter, value, s.patches, s.elements, s.links, s.work,
-                    s.total_seconds});
+    rows.push_back(
+        {std::string(to_string(o.method)), parameter, value, s.patches, s.elements, s.links, s.work, s.total_seconds});
   }
   return rows;
 }
@@ -138,7 +138,8 @@ nlohmann::json cost_fits(const std::vector<CostRow>& rows) {
       }
       const std::set<double> distinct(x.begin(), x.end());
       const bool positive = std::all_of(y.begin(), y.end(), [](double v) { return v > 0.0; });
-      j["methods"][method][m.name] = distinct.size() >= 3 && positive ? fit_json(fit_power_law(x, y)) : nlohmann::json();
+      j["methods"][method][m.name] =
+          distinct.size() >= 3 && positive ? fit_json(fit_power_law(x, y)) : nlohmann::json();
     }
   return j;
 }
@@ -156,7 +157,8 @@ EdgeFigure edge_figure(const Scene& scene, SolveOptions options) {
     for (const Vec3& b : p1.vertices)
       if ((a - b).norm() <= 1e-9 * std::max(1.0, scale)) shared.push_back(a);
   if (shared.size() != 2)
-    throw Error(fmt::format("{}: patches 0 and 1 share {} vertices, not an edge (figure 2)", scene.path, shared.size()));
+    throw Error(
+        fmt::format("{}: patches 0 and 1 share {} vertices, not an edge (figure 2)", scene.path, shared.size()));
 
   EdgeFigure fig;
   fig.edge_a = shared[0];
@@ -221,8 +223,8 @@ std::vector<FarRow> far_rows(const Scene& scene, const std::vector<int>& ks, dou
           break;
         case Method::kHierarchical:  // two patches: every link joins the two surfaces
           r.cross_factors = summary.links;
-          r.cross_pairs = static_cast<std::size_t>(summary.figures.count("link_pairs")
-                                                       ? summary.figures.at("link_pairs") : 0.0);
+          r.cross_pairs =
+              static_cast<std::size_t>(summary.figures.count("link_pairs") ? summary.figures.at("link_pairs") : 0.0);
           break;
       }
       rows.push_back(r);
@@ -281,7 +283,8 @@ EqualTimeFigure equal_time_figure(const Scene& scene, const EqualTimeOptions& op
   {
     SolveOptions o = options_for(Method::kFull, options.threads);
     o.max_area = area / options.reference_elements;
-    report(progress, fmt::format("figure 6: reference (full matrix, LU, {} elements aimed at)", options.reference_elements));
+    report(progress,
+           fmt::format("figure 6: reference (full matrix, LU, {} elements aimed at)", options.reference_elements));
     fig.reference_summary = solve(scene, o, &fig.reference);
   }
   const Solution reference_reflected = reflected_part(scene, fig.reference);
@@ -341,15 +344,17 @@ EqualTimeFigure equal_time_figure(const Scene& scene, const EqualTimeOptions& op
 }
 
 std::string equal_time_csv(const EqualTimeFigure& figure) {
-  std::string out = "method,parameter,value,elements,links,seconds,budget_seconds,error_l2,error_linf,image,error_image\n";
+  std::string out =
+      "method,parameter,value,elements,links,seconds,budget_seconds,error_l2,error_linf,image,error_image\n";
   for (const EqualTimeRun& r : figure.runs)
     out += fmt::format("{},{},{:.9g},{},{},{:.6g},{:.6g},{:.9g},{:.9g},fig6_{}.png,fig6_{}_error.png\n", r.method,
                        r.parameter, r.value, r.summary.elements, r.summary.links, r.summary.total_seconds,
                        figure.budget_seconds, r.error.relative_l2, r.error.relative_linf, r.method, r.method);
-  out += fmt::format("reference,max_area,{:.9g},{},{},{:.6g},{:.6g},0,0,,\n",
-                     figure.reference_summary.figures.count("max_area") ? figure.reference_summary.figures.at("max_area") : 0.0,
-                     figure.reference_summary.elements, figure.reference_summary.links,
-                     figure.reference_summary.total_seconds, figure.budget_seconds);
+  out += fmt::format(
+      "reference,max_area,{:.9g},{},{},{:.6g},{:.6g},0,0,,\n",
+      figure.reference_summary.figures.count("max_area") ? figure.reference_summary.figures.at("max_area") : 0.0,
+      figure.reference_summary.elements, figure.reference_summary.links, figure.reference_summary.total_seconds,
+      figure.budget_seconds);
   return out;
 }
 

@@ -77,7 +77,7 @@ struct EdgeElementRow {
   int element = 0, patch = 0;
   double distance = 0.0;  ///< from the element's centroid to the common edge (a segment)
   double area = 0.0;
-  double size = 0.0;      ///< sqrt(area)
+  double size = 0.0;  ///< sqrt(area)
 };
 
 struct EdgeFigure {
@@ -96,9 +96,9 @@ std::string edge_csv(const EdgeFigure& figure);
 // ---- Figure 3: two surfaces far apart ----------------------------------------------------------
 
 struct FarRow {
-  int k = 0;                          ///< elements per surface of the uniform meshes (4^d)
+  int k = 0;  ///< elements per surface of the uniform meshes (4^d)
   std::string method;
-  std::size_t elements = 0;           ///< leaves of the whole scene
+  std::size_t elements = 0;  ///< leaves of the whole scene
   /// Factors between the two surfaces, each direction counted: full 2 k^2 (k^2 element pairs),
   /// substructuring 2k (each element receives from the other patch), hierarchical its directed links.
   std::size_t cross_factors = 0;
@@ -140,9 +140,9 @@ struct EqualTimeRun {
   std::string method;
   std::string parameter;  ///< the setting chosen to meet the time budget
   double value = 0.0;
-  Solution solution;      ///< as solved (emission included)
+  Solution solution;  ///< as solved (emission included)
   SolveSummary summary;
-  ErrorMetrics error;     ///< of B - E against the reference's, emitters excluded
+  ErrorMetrics error;  ///< of B - E against the reference's, emitters excluded
 };
 
 struct EqualTimeFigure {
@@ -153,17 +153,16 @@ struct EqualTimeFigure {
 };
 
 struct EqualTimeOptions {
-  double reference_elements = 256;   ///< full matrix LU reference: max_area = total area / this
-  double first_elements = 64;        ///< the first calibration run's count (max_area = total / this)
+  double reference_elements = 256;  ///< full matrix LU reference: max_area = total area / this
+  double first_elements = 64;       ///< the first calibration run's count (max_area = total / this)
   int samples_per_patch = 256;
   /// Calibration runs per method (each a solve) to meet the budget; the run closest to it is kept.
   int calibration_runs = 3;
-  SolveOptions hierarchical;         ///< the run that sets the budget (method forced to hierarchical)
+  SolveOptions hierarchical;  ///< the run that sets the budget (method forced to hierarchical)
   int threads = 0;
 };
 
-EqualTimeFigure equal_time_figure(const Scene& scene, const EqualTimeOptions& options,
-                                  const ProgressFn& progress = {});
+EqualTimeFigure equal_time_figure(const Scene& scene, const EqualTimeOptions& options, const ProgressFn& progress = {});
 /// Header: method,parameter,value,elements,links,seconds,budget_seconds,error_l2,error_linf,image,error_image.
 std::string equal_time_csv(const EqualTimeFigure& figure);
 

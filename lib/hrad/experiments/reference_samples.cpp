@@ -54,8 +54,8 @@ Reference read_reference_samples(const std::string& dir, const Scene& scene, int
   if (!doc.is_object() || !doc.contains("samples") || !doc["samples"].is_array())
     fail("expected an object with an array \"samples\"");
   if (doc.value("samples_per_patch", -1) != samples_per_patch)
-    fail(fmt::format("made with {} samples per patch, this sweep uses {} (--samples)", doc.value("samples_per_patch", -1),
-                     samples_per_patch));
+    fail(fmt::format("made with {} samples per patch, this sweep uses {} (--samples)",
+                     doc.value("samples_per_patch", -1), samples_per_patch));
   if (doc.value("layout", std::string()) != "jittered") fail("layout must be \"jittered\"");
   const std::vector<SurfaceSample> samples = patch_samples(scene, samples_per_patch);
   const json& rows = doc["samples"];
@@ -72,8 +72,8 @@ Reference read_reference_samples(const std::string& dir, const Scene& scene, int
       if (!r[k].is_number()) fail(fmt::format("sample {}: column {} is not a number", i, k));
     const Vec3 x(r[1].get<double>(), r[2].get<double>(), r[3].get<double>());
     if (r[0].get<int>() != samples[i].patch || !((x - samples[i].position).norm() <= tolerance))
-      fail(fmt::format("sample {} is at patch {} ({}, {}, {}), this scene's at patch {} ({}, {}, {}): another scene?", i,
-                       r[0].get<int>(), x.x(), x.y(), x.z(), samples[i].patch, samples[i].position.x(),
+      fail(fmt::format("sample {} is at patch {} ({}, {}, {}), this scene's at patch {} ({}, {}, {}): another scene?",
+                       i, r[0].get<int>(), x.x(), x.y(), x.z(), samples[i].patch, samples[i].position.x(),
                        samples[i].position.y(), samples[i].position.z()));
     ref.gathered[i] = Rgb(r[5].get<double>(), r[6].get<double>(), r[7].get<double>());
   }

@@ -17,19 +17,19 @@
 namespace hrad {
 namespace {
 
-constexpr double kCell = 2.5;          // floor cell, metres
-constexpr double kHeight = 3.0;        // room height
-constexpr double kFloorGap = 0.01;     // furniture floats 1 cm above the floor (closed boxes)
-constexpr double kGroupRadius = 1.1;   // a group's footprint stays in this circle about its cell's centre
+constexpr double kCell = 2.5;         // floor cell, metres
+constexpr double kHeight = 3.0;       // room height
+constexpr double kFloorGap = 0.01;    // furniture floats 1 cm above the floor (closed boxes)
+constexpr double kGroupRadius = 1.1;  // a group's footprint stays in this circle about its cell's centre
 
 enum MaterialId { kWall, kFloor, kCeiling, kLight, kWood, kMetal, kFabric, kCardboard, kScreen };
 
 std::vector<Material> generated_materials() {
   auto m = [](const char* name, Rgb rho, Rgb e = Rgb::Zero()) { return Material{name, rho, e}; };
-  return {m("wall", Rgb(0.70, 0.70, 0.68)),  m("floor", Rgb(0.35, 0.30, 0.25)),
+  return {m("wall", Rgb(0.70, 0.70, 0.68)),    m("floor", Rgb(0.35, 0.30, 0.25)),
           m("ceiling", Rgb(0.80, 0.80, 0.80)), m("light", Rgb(0.80, 0.80, 0.80), Rgb(10.0, 10.0, 9.0)),
-          m("wood", Rgb(0.55, 0.40, 0.25)),   m("metal", Rgb(0.50, 0.50, 0.55)),
-          m("fabric", Rgb(0.20, 0.30, 0.60)), m("cardboard", Rgb(0.60, 0.50, 0.35)),
+          m("wood", Rgb(0.55, 0.40, 0.25)),    m("metal", Rgb(0.50, 0.50, 0.55)),
+          m("fabric", Rgb(0.20, 0.30, 0.60)),  m("cardboard", Rgb(0.60, 0.50, 0.35)),
           m("screen", Rgb(0.05, 0.05, 0.05))};
 }
 
@@ -80,7 +80,8 @@ class Builder {
 std::vector<Box> table(bool monitor, double dz) {
   std::vector<Box> parts = {{-0.6, 0.6, 0.70, 0.74, -0.4 + dz, 0.4 + dz, kWood}};
   for (const double x : {-0.57, 0.52})
-    for (const double z : {-0.37, 0.32}) parts.push_back({x, x + 0.05, kFloorGap, 0.695, z + dz, z + 0.05 + dz, kMetal});
+    for (const double z : {-0.37, 0.32})
+      parts.push_back({x, x + 0.05, kFloorGap, 0.695, z + dz, z + 0.05 + dz, kMetal});
   if (monitor) parts.push_back({-0.25, 0.25, 0.745, 1.05, -0.05 + dz, 0.05 + dz, kScreen});
   return parts;
 }
@@ -200,8 +201,8 @@ GeneratedScene city(int n, Rng& rng) {
       b.quad({{x0, 0, z0}, {x1, 0, z0}, {x1, 0, z1}, {x0, 0, z1}}, Vec3::UnitY(), kFloor, ground_group);
     }
   const double sky = 4.0 * size;
-  b.quad({{-size, sky, -size}, {2 * size, sky, -size}, {2 * size, sky, 2 * size}, {-size, sky, 2 * size}}, -Vec3::UnitY(),
-         kLight, sky_group);
+  b.quad({{-size, sky, -size}, {2 * size, sky, -size}, {2 * size, sky, 2 * size}, {-size, sky, 2 * size}},
+         -Vec3::UnitY(), kLight, sky_group);
   int buildings = 0;
   for (int bi = 0; bi < blocks; ++bi)
     for (int bk = 0; bk < blocks; ++bk) {
@@ -372,7 +373,8 @@ void write_generated_scene(const GeneratedScene& g, const std::string& obj_path,
     for (const GeneratedScene::Face& f : g.faces) {
       progress.advance();
       if (f.group != group) out << "\no " << g.groups[static_cast<std::size_t>(group = f.group)] << "\n";
-      if (f.material != material) out << "usemtl " << g.materials[static_cast<std::size_t>(material = f.material)].name << "\n";
+      if (f.material != material)
+        out << "usemtl " << g.materials[static_cast<std::size_t>(material = f.material)].name << "\n";
       for (const Vec3& v : f.vertices) out << fmt::format("v {} {} {}\n", v.x(), v.y(), v.z());
       out << "f -4 -3 -2 -1\n";
     }

@@ -32,8 +32,8 @@ namespace hrad {
 enum class SceneLayout { kOffice, kPillars, kCity };
 
 struct SceneGeneratorOptions {
-  int polygons = 1000;      ///< requested input polygons (>= kMinGeneratedPolygons)
-  std::uint64_t seed = 1;   ///< the same seed and count give the same scene, bit for bit
+  int polygons = 1000;     ///< requested input polygons (>= kMinGeneratedPolygons)
+  std::uint64_t seed = 1;  ///< the same seed and count give the same scene, bit for bit
   SceneLayout layout = SceneLayout::kOffice;
 };
 
@@ -48,13 +48,13 @@ struct GeneratedScene {
   struct Face {
     std::vector<Vec3> vertices;  ///< counter-clockwise seen from the front
     int material = 0;
-    int group = 0;               ///< index into groups
+    int group = 0;  ///< index into groups
   };
   std::vector<Material> materials;
   std::vector<std::string> groups;
   std::vector<Face> faces;
-  int cells_x = 0, cells_z = 0;  ///< floor cells (2.5 m each)
-  Vec3 room_size = Vec3::Zero(); ///< the room is [0, x] x [0, y] x [0, z] (metres)
+  int cells_x = 0, cells_z = 0;   ///< floor cells (2.5 m each)
+  Vec3 room_size = Vec3::Zero();  ///< the room is [0, x] x [0, y] x [0, z] (metres)
 };
 
 /// The polygon count of generate_scene() lies in [polygons - kGeneratedPolygonSlack, polygons].

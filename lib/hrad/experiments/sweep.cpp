@@ -5,8 +5,8 @@
 #include <cstring>
 #include <functional>
 #include <map>
-#include <unordered_map>
 #include <set>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -38,7 +38,8 @@ Solution reflected_part(const Scene& scene, Solution solution) {
   for (std::size_t f = 0; f < solution.faces.size(); ++f)
     solution.face_radiosity[f] -= scene.material_of(scene.patches[solution.face_patch[f]]).emission;
   for (std::size_t f = 0; f < solution.face_field.size(); ++f)
-    for (Rgb& b : solution.face_field[f].radiosity) b -= scene.material_of(scene.patches[solution.face_patch[f]]).emission;
+    for (Rgb& b : solution.face_field[f].radiosity)
+      b -= scene.material_of(scene.patches[solution.face_patch[f]]).emission;
   for (std::size_t p = 0; p < solution.patch_radiosity.size(); ++p)
     solution.patch_radiosity[p] -= scene.material_of(scene.patches[p]).emission;
   // A vertex is shared only by leaves of one plane and one material (ElementHierarchy::to_solution),
@@ -135,12 +136,13 @@ Reference make_reference(const Scene& scene, const SweepOptions& options) {
       {"kind", "converged solution computed independently of the runs judged"},
       {"method", "full"},
       {"linear_solver", "lu"},
-      {"why", ref.gathered.empty()
-                  ? "a direct solve on a uniform mesh finer than any full-matrix run of the sweep: it shares the exact "
-                    "kernels with the runs but none of their discretisations or iterations"
-                  : "a direct solve on a uniform mesh, final-gathered at the error samples: it shares the exact kernels "
-                    "with the runs but none of their discretisations or iterations, and its own element error enters "
-                    "only through the gather's integral, so it need not be finer than the runs it judges"},
+      {"why",
+       ref.gathered.empty()
+           ? "a direct solve on a uniform mesh finer than any full-matrix run of the sweep: it shares the exact "
+             "kernels with the runs but none of their discretisations or iterations"
+           : "a direct solve on a uniform mesh, final-gathered at the error samples: it shares the exact kernels "
+             "with the runs but none of their discretisations or iterations, and its own element error enters "
+             "only through the gather's integral, so it need not be finer than the runs it judges"},
       {"elements_aimed_at", n},
       {"max_area", o.max_area},
       {"visibility_samples", o.visibility_samples},
@@ -190,7 +192,8 @@ GatheredLookup gathered_lookup(const Scene& scene, const Reference& reference, i
   GatheredLookup lookup;
   if (reference.gathered.empty()) return lookup;
   const std::vector<SurfaceSample> samples = patch_samples(scene, samples_per_patch);
-  for (std::size_t i = 0; i < samples.size(); ++i) lookup[{samples[i].patch, samples[i].position}] = reference.gathered[i];
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    lookup[{samples[i].patch, samples[i].position}] = reference.gathered[i];
   return lookup;
 }
 
@@ -198,7 +201,8 @@ GatheredLookup gathered_lookup(const Scene& scene, const Reference& reference, i
 // off the samples, the centroid of a leaf no sample falls in, takes the reference's own field).
 ErrorMetrics judge(const Scene& scene, const Solution& run, const Reference& reference, const GatheredLookup& lookup,
                    int samples_per_patch, Field field) {
-  if (lookup.empty()) return compare_solutions(scene, run, reference.solution, samples_per_patch, Emitters::include, field);
+  if (lookup.empty())
+    return compare_solutions(scene, run, reference.solution, samples_per_patch, Emitters::include, field);
   const SolutionSampler fallback(scene, reference.solution);
   return compare_to_function(
       scene, run,
@@ -230,8 +234,9 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
     } catch (const Error& e) {
       ++done;
       if (options.progress)
-        options.progress(done, static_cast<int>(settings.size()),
-                         fmt::format("skipped {} {}={:.4g}: {}", to_string(method), setting.parameter, setting.value, e.what()));
+        options.progress(
+            done, static_cast<int>(settings.size()),
+            fmt::format("skipped {} {}={:.4g}: {}", to_string(method), setting.parameter, setting.value, e.what()));
       continue;
     }
     SweepRow row;
@@ -251,7 +256,8 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
     }
     const Solution reflected = reflected_part(scene, std::move(solution));
     const ErrorMetrics e = judge(scene, reflected, reference, lookup, options.samples_per_patch, Field::constant);
-    const ErrorMetrics smooth = judge(scene, reflected, reference, lookup, options.samples_per_patch, Field::interpolated);
+    const ErrorMetrics smooth =
+        judge(scene, reflected, reference, lookup, options.samples_per_patch, Field::interpolated);
     row.method = std::string(to_string(method));
     if (method == Method::kHierarchical && setting.options.push == Push::kLeaf) row.method += "_leaf";
     if (setting.options.basis == Basis::kLinear) row.method += "_linear";
@@ -277,8 +283,13 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
 }
 
 nlohmann::json fit_json(const PowerLawFit& fit) {
-  return {{"a", fit.a}, {"b", fit.b}, {"a_stderr", fit.a_stderr}, {"b_stderr", fit.b_stderr},
-          {"points", fit.points}, {"rms_log_residual", fit.rms_log_residual}, {"converged", fit.converged}};
+  return {{"a", fit.a},
+          {"b", fit.b},
+          {"a_stderr", fit.a_stderr},
+          {"b_stderr", fit.b_stderr},
+          {"points", fit.points},
+          {"rms_log_residual", fit.rms_log_residual},
+          {"converged", fit.converged}};
 }
 
 namespace {
@@ -339,10 +350,13 @@ nlohmann::json time_to_error(const std::vector<const SweepRow*>& all_rows, doubl
   const SweepRow* first = nullptr;
   std::size_t k = 0;
   for (; k < by_time.size(); ++k)
-    if (by_time[k]->*error <= target) { first = by_time[k]; break; }
+    if (by_time[k]->*error <= target) {
+      first = by_time[k];
+      break;
+    }
   if (!first) {
-    const SweepRow* best = *std::min_element(rows.begin(), rows.end(),
-                                             [&](auto* a, auto* b) { return a->*error < b->*error; });
+    const SweepRow* best =
+        *std::min_element(rows.begin(), rows.end(), [&](auto* a, auto* b) { return a->*error < b->*error; });
     j["reached"] = false;
     j["best_error_l2"] = best->*error;
     j["slowest_seconds"] = seconds_of(*by_time.back());
@@ -378,9 +392,10 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
   j["model"] = "y ~ a x^b, least squares in log space (Ceres), one standard error (lib/hrad/analysis/power_law_fit.h)";
   for (const auto& [method, list] : by_method) {
     nlohmann::json m;
-    m["time_vs_elements"] = maybe_fit(size_runs[method], +elements, +[](const SweepRow& r) { return r.seconds; });
-    m["links_vs_elements"] =
-        maybe_fit(size_runs[method], +elements, +[](const SweepRow& r) { return double(r.links); });
+    m["time_vs_elements"] = maybe_fit(
+        size_runs[method], +elements, +[](const SweepRow& r) { return r.seconds; });
+    m["links_vs_elements"] = maybe_fit(
+        size_runs[method], +elements, +[](const SweepRow& r) { return double(r.links); });
     for (const SweepField& f : kFields)
       m[std::string("time_to_target_error") + f.suffix] = time_to_error(list, target_error, f.error, f.seconds);
     j["methods"][method] = std::move(m);
@@ -389,8 +404,8 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
     std::vector<const SweepRow*> feps_runs;
     for (const SweepRow* r : by_method["hierarchical"])
       if (r->parameter == "feps") feps_runs.push_back(r);
-    j["methods"]["hierarchical"]["error_vs_feps"] =
-        maybe_fit(feps_runs, +[](const SweepRow& r) { return r.value; }, +[](const SweepRow& r) { return r.error_l2; });
+    j["methods"]["hierarchical"]["error_vs_feps"] = maybe_fit(
+        feps_runs, +[](const SweepRow& r) { return r.value; }, +[](const SweepRow& r) { return r.error_l2; });
   }
   // The headline: how much faster hierarchical radiosity reaches the target error than the full matrix.
   const auto& methods = j["methods"];
@@ -404,11 +419,13 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
     s["field"] = fd.description;
     s["target_error_l2"] = target_error;
     if (hr["reached"] && full["reached"]) {
-      s["full_over_hierarchical_measured"] = full["measured_seconds"].get<double>() / hr["measured_seconds"].get<double>();
+      s["full_over_hierarchical_measured"] =
+          full["measured_seconds"].get<double>() / hr["measured_seconds"].get<double>();
       s["full_over_hierarchical_interpolated"] =
           full["interpolated_seconds"].get<double>() / hr["interpolated_seconds"].get<double>();
     } else if (hr["reached"]) {
-      s["full_over_hierarchical_at_least"] = full["slowest_seconds"].get<double>() / hr["measured_seconds"].get<double>();
+      s["full_over_hierarchical_at_least"] =
+          full["slowest_seconds"].get<double>() / hr["measured_seconds"].get<double>();
       s["note"] = "the full matrix did not reach the target in this sweep: the ratio is a lower bound";
     } else {
       s["note"] = "the hierarchical solver did not reach the target in this sweep";
@@ -424,7 +441,8 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
       c["error_l2"] = common;
       c["full_seconds"] = f["interpolated_seconds"];
       c["hierarchical_seconds"] = h["interpolated_seconds"];
-      c["full_over_hierarchical_interpolated"] = f["interpolated_seconds"].get<double>() / h["interpolated_seconds"].get<double>();
+      c["full_over_hierarchical_interpolated"] =
+          f["interpolated_seconds"].get<double>() / h["interpolated_seconds"].get<double>();
       j[std::string("speedup_at_common_error") + field] = std::move(c);
     }
     j[std::string("speedup") + field] = std::move(s);
@@ -451,7 +469,8 @@ nlohmann::json sweep_fits(const std::vector<SweepRow>& rows, double target_error
         break;
       }
       const double n = std::pow(err["a"].get<double>() / target_error, -1.0 / err["b"].get<double>());
-      x[method] = {{"error_vs_elements", err}, {"elements", n},
+      x[method] = {{"error_vs_elements", err},
+                   {"elements", n},
                    {"seconds", time["a"].get<double>() * std::pow(n, time["b"].get<double>())}};
     }
     if (!both) continue;

@@ -17,7 +17,8 @@ struct Building {
 };
 
 // Cuts the rectangle origin + [0,1] u + [0,1] v into nu x nv quads facing u x v.
-void add_grid(GeneratedScene& g, const Vec3& origin, const Vec3& u, const Vec3& v, int nu, int nv, int material, int group) {
+void add_grid(GeneratedScene& g, const Vec3& origin, const Vec3& u, const Vec3& v, int nu, int nv, int material,
+              int group) {
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j < nv; ++j) {
       const Vec3 a = origin + u * (double(i) / nu) + v * (double(j) / nv);
@@ -54,7 +55,8 @@ GeneratedScene generate_urban(const UrbanGeneratorOptions& options) {
   const double size = std::sqrt(area / wanted);
 
   GeneratedScene g;
-  g.materials = {{"ground", Rgb::Constant(0.1), Rgb::Zero()}, {"wall", Rgb::Constant(0.3), Rgb::Zero()},
+  g.materials = {{"ground", Rgb::Constant(0.1), Rgb::Zero()},
+                 {"wall", Rgb::Constant(0.3), Rgb::Zero()},
                  {"roof", Rgb::Constant(0.2), Rgb::Zero()}};
   g.groups.push_back("ground");
   const int n_ground = static_cast<int>(std::lround(grid * kBlock / kTile));
@@ -71,7 +73,8 @@ GeneratedScene generate_urban(const UrbanGeneratorOptions& options) {
     add_grid(g, Vec3(b.x0, 0, b.z1), Vec3(dx, 0, 0), up, cuts(dx, size), cuts(b.h, size), 1, group);   // +z
     add_grid(g, Vec3(b.x0, 0, b.z0), Vec3(0, 0, dz), up, cuts(dz, size), cuts(b.h, size), 1, group);   // -x
     add_grid(g, Vec3(b.x1, 0, b.z1), Vec3(0, 0, -dz), up, cuts(dz, size), cuts(b.h, size), 1, group);  // +x
-    add_grid(g, Vec3(b.x0, b.h, b.z0), Vec3(0, 0, dz), Vec3(dx, 0, 0), cuts(dz, size), cuts(dx, size), 2, group);  // roof, +y
+    add_grid(g, Vec3(b.x0, b.h, b.z0), Vec3(0, 0, dz), Vec3(dx, 0, 0), cuts(dz, size), cuts(dx, size), 2,
+             group);  // roof, +y
   }
   g.cells_x = g.cells_z = grid;
   g.room_size = Vec3(grid * kBlock, 45.0, grid * kBlock);

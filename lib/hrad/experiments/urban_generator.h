@@ -15,7 +15,7 @@
 namespace hrad {
 
 struct UrbanGeneratorOptions {
-  int facets = 22000;     ///< requested facets (>= 200)
+  int facets = 22000;  ///< requested facets (>= 200)
   std::uint64_t seed = 1;
 };
 

@@ -21,9 +21,9 @@
 //   d the offset of P0 from Q0 along a, h the distance between the lines.
 #include "hrad/formfactor/edge_pair_integral.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <algorithm>
 #include <utility>
 
 #include <Eigen/Core>
@@ -170,7 +170,9 @@ constexpr std::array<GaussFn, sizeof...(I)> gauss_table(std::integer_sequence<in
 }
 constexpr std::array<GaussFn, kMaxOrder> kGauss = gauss_table(std::make_integer_sequence<int, kMaxOrder>{});
 
-inline double gauss(const SkewPair& e, double lo, double hi, int n) { return kGauss[static_cast<std::size_t>(n - 1)](e, lo, hi); }
+inline double gauss(const SkewPair& e, double lo, double hi, int n) {
+  return kGauss[static_cast<std::size_t>(n - 1)](e, lo, hi);
+}
 
 // The Gauss order for a panel whose nearest singularity has semi-major axis a: the smallest n with
 // rho^(-2n) <= 1e-16, i.e. n ln(rho) >= kLogTarget, i.e. a >= cosh(kLogTarget / n) (rho = a +

@@ -23,10 +23,10 @@ Segment make_segment(const Vec3& p0, const Vec3& p1);
 /// other segment; the two edges meeting at Q share it, so a contour sum computes it once per
 /// (edge, vertex) rather than once per edge pair.
 struct EndpointTerms {
-  double beta = 0.0;                  // (P0 - Q) . a: P(s) is nearest Q at s = -beta
-  double rho = 0.0;                   // distance of Q from p's line
-  double r2_0 = 0.0, r2_1 = 0.0;      // |P0 - Q|^2, |P1 - Q|^2
-  double log0 = 0.0, log1 = 0.0;      // their logarithms (0 where they are 0)
+  double beta = 0.0;                    // (P0 - Q) . a: P(s) is nearest Q at s = -beta
+  double rho = 0.0;                     // distance of Q from p's line
+  double r2_0 = 0.0, r2_1 = 0.0;        // |P0 - Q|^2, |P1 - Q|^2
+  double log0 = 0.0, log1 = 0.0;        // their logarithms (0 where they are 0)
   double h_atan0 = 0.0, h_atan1 = 0.0;  // rho atan(beta / rho), rho atan((Lp + beta) / rho) (0 for rho = 0)
 };
 EndpointTerms endpoint_terms(const Segment& p, const Vec3& q);

@@ -33,8 +33,8 @@ inline AtanReduced atan_reduced(double t) {
   // The inner sum by Estrin's scheme (a short dependency chain); a1 d apart, so that for c = 0
   // (a1 = 1) the leading term is not rounded.
   const double d2 = d * d, d4 = d2 * d2, d8 = d4 * d4;
-  const double q = ((a[1] + a[2] * d) + d2 * (a[3] + a[4] * d)) +
-                   d4 * ((a[5] + a[6] * d) + d2 * (a[7] + a[8] * d)) + d8 * a[9];
+  const double q =
+      ((a[1] + a[2] * d) + d2 * (a[3] + a[4] * d)) + d4 * ((a[5] + a[6] * d) + d2 * (a[7] + a[8] * d)) + d8 * a[9];
   return {node, a[0] * d + d2 * q};
 }
 

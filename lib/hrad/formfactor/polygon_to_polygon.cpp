@@ -94,7 +94,8 @@ struct Refinement {
 
   double total(std::span<const Vec3> from, std::span<const Vec3> to) {
     double sum = 0.0;
-    const std::vector<Triangle> tf = detail::triangle_pieces(from, from_normal), tt = detail::triangle_pieces(to, to_normal);
+    const std::vector<Triangle> tf = detail::triangle_pieces(from, from_normal),
+                                tt = detail::triangle_pieces(to, to_normal);
     for (const Triangle& a : tf)
       for (const Triangle& b : tt) sum += refine(a, b);
     return sum;
@@ -126,9 +127,8 @@ PairFormFactor polygon_to_polygon(std::span<const Vec3> from, std::span<const Ve
   const bool accurate = kEps * sum.magnitude <= std::max(rel_tol * sum.area_factor, floor);
   if (!accurate) {
     const bool far = detail::far_field_order((cf - ct).norm(), rf, rt, rel_tol * kFarMargin) > 0;
-    const bool touching_alike =
-        !far && std::max(rf, rt) < kSizeRatio * std::min(rf, rt) &&
-        detail::polygon_distance(pair.from, pair.from_normal, pair.to, pair.to_normal) == 0.0;
+    const bool touching_alike = !far && std::max(rf, rt) < kSizeRatio * std::min(rf, rt) &&
+                                detail::polygon_distance(pair.from, pair.from_normal, pair.to, pair.to_normal) == 0.0;
     if (!touching_alike) {
       const double refined = refinement.total(pair.from, pair.to);
       // Out of budget (pieces near each other that stay slivers): the contour sum is usually the

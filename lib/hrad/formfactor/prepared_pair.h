@@ -14,8 +14,8 @@ struct PreparedPair {
   Vec3 from_normal, to_normal;  // unit normals (fronts)
   double from_area = 0.0;       // areas of the unclipped input polygons, in input units^2
   double to_area = 0.0;
-  double scale = 1.0;           // input length per local length
-  bool visible = false;         // false: the factor is exactly 0 (facing away, coplanar, behind, degenerate)
+  double scale = 1.0;    // input length per local length
+  bool visible = false;  // false: the factor is exactly 0 (facing away, coplanar, behind, degenerate)
 };
 
 /// Prepares the pair; `visible` is false when either clipped polygon has no area.

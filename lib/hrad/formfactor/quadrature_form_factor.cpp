@@ -74,8 +74,8 @@ QuadratureFormFactor quadrature_form_factor(std::span<const Vec3> from, std::spa
     error -= worst.error;
     const Vec3 &a = worst.a, &b = worst.b, &c = worst.c;
     const Vec3 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
-    for (const auto& [x, y, z] : {std::array{a, ab, ca}, std::array{ab, b, bc}, std::array{ca, bc, c},
-                                  std::array{ab, bc, ca}}) {
+    for (const auto& [x, y, z] :
+         {std::array{a, ab, ca}, std::array{ab, b, bc}, std::array{ca, bc, c}, std::array{ab, bc, ca}}) {
       const Cell child = in.cell(x, y, z, in.rule(x, y, z));
       total += child.value;
       error += child.error;

@@ -39,7 +39,7 @@ double receiver_gauss_factor(std::span<const Vec3> receiver, std::span<const Vec
 /// error for a point factor ~ cos cos / (pi r^2) is about (diameter / distance)^2 / 4 (its second
 /// derivative over the receiver), so ratio 0.1 keeps it near 0.25%: enough where the factors are
 /// only a distribution of an exactly known total (hierarchical_leaf_factors.h), at 1/9 the cost.
-double receiver_factor_by_distance(std::span<const Vec3> receiver, std::span<const Vec3> source,
-                                   double centroid_ratio, int* point_count = nullptr);
+double receiver_factor_by_distance(std::span<const Vec3> receiver, std::span<const Vec3> source, double centroid_ratio,
+                                   int* point_count = nullptr);
 
 }  // namespace hrad

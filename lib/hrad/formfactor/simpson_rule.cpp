@@ -58,10 +58,14 @@ std::array<int, 4> child_corner_points(int vertex_count, int child) {
   if (vertex_count == 4) return {child, 4 + child, 8, 4 + (child + 3) % 4};
   // Triangle children: {v0, m01, m20}, {v1, m12, m01}, {v2, m20, m12}, {m01, m12, m20}.
   switch (child) {
-    case 0: return {0, 3, 5, -1};
-    case 1: return {1, 4, 3, -1};
-    case 2: return {2, 5, 4, -1};
-    default: return {3, 4, 5, -1};
+    case 0:
+      return {0, 3, 5, -1};
+    case 1:
+      return {1, 4, 3, -1};
+    case 2:
+      return {2, 5, 4, -1};
+    default:
+      return {3, 4, 5, -1};
   }
 }
 

@@ -13,11 +13,11 @@ namespace hrad {
 
 /// Where simpson_points() lie on a quad: (u, v) of each on the bilinear map
 /// x = (1-u)(1-v) v0 + u(1-v) v1 + uv v2 + (1-u)v v3.
-inline constexpr double kSimpsonQuadUv[9][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0}, {1, 0.5}, {0.5, 1}, {0, 0.5}, {0.5, 0.5}};
+inline constexpr double kSimpsonQuadUv[9][2] = {{0, 0},   {1, 0},   {1, 1},   {0, 1},    {0.5, 0},
+                                                {1, 0.5}, {0.5, 1}, {0, 0.5}, {0.5, 0.5}};
 /// Where simpson_points() lie on a triangle: barycentric coordinates of each.
-inline constexpr double kSimpsonTriangleBary[7][3] = {{1, 0, 0},     {0, 1, 0},     {0, 0, 1},
-                                                      {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5},
-                                                      {1.0 / 3, 1.0 / 3, 1.0 / 3}};
+inline constexpr double kSimpsonTriangleBary[7][3] = {
+    {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
 
 /// At most 9 points: a quad gives 9, a triangle 7.
 struct SimpsonPoints {

@@ -53,7 +53,8 @@ GatheredImage render_gathered(const Solution& s, const FinalGather& gather, cons
   out.gather_seconds = gathering.seconds();
   out.work = gather.work() - before;
   PixelAverager average(camera.width, camera.height, passes, o.exposure, o.background);
-  for (std::size_t i = 0; i < points.size(); ++i) average.add(hits[i].x, hits[i].y, gather.radiosity(points[i].patch, h[i]));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    average.add(hits[i].x, hits[i].y, gather.radiosity(points[i].patch, h[i]));
   out.display = average.display();
   out.radiosity = average.linear();
   out.points = points.size();

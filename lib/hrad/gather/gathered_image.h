@@ -7,9 +7,9 @@
 
 #include <cstdint>
 
+#include "hrad/core/image.h"
 #include "hrad/core/solution.h"
 #include "hrad/gather/final_gather.h"
-#include "hrad/core/image.h"
 #include "hrad/render/render.h"
 
 namespace hrad {
@@ -20,7 +20,7 @@ struct GatheredImage {
   std::size_t points = 0;  ///< samples gathered (those that saw a leaf)
   double seconds = 0.0;    ///< the whole image: rasterizing, gathering, averaging
   double gather_seconds = 0.0;
-  GatherWork work;         ///< this image's share of the gather's work
+  GatherWork work;  ///< this image's share of the gather's work
 };
 
 /// Renders `solution` (the leaves `gather` gathers from, on `gather.scene()`) with

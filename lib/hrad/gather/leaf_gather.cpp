@@ -285,7 +285,8 @@ Rgb LeafGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w, do
     double before = 0.0;
     for (const Scratch::Partial& e : s.partial) {
       const double after = before + e.importance;
-      const int count = static_cast<int>(std::ceil(after / total * m - offset) - std::ceil(before / total * m - offset));
+      const int count =
+          static_cast<int>(std::ceil(after / total * m - offset) - std::ceil(before / total * m - offset));
       before = after;
       if (count <= 0) continue;
       const std::span<const Vec3> polygon = trees_.polygon(e.node);
@@ -314,17 +315,18 @@ std::vector<Rgb> LeafGather::gather_with_bounds(std::span<const GatherPoint> poi
                                                 ProgressReporter* progress) const {
   std::vector<Rgb> out(points.size(), Rgb::Zero());
   if (bounds) bounds->assign(points.size(), 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
-    Scratch scratch;
-    GatherWork local;
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
-      out[i] = gather_point(points[i], scratch, local, bounds ? &(*bounds)[i] : nullptr);
-    {
-      const std::lock_guard<std::mutex> lock(work_mutex_);
-      work_ += local;
-    }
-    if (progress) progress->advance(r.size());
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 16),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      Scratch scratch;
+                      GatherWork local;
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        out[i] = gather_point(points[i], scratch, local, bounds ? &(*bounds)[i] : nullptr);
+                      {
+                        const std::lock_guard<std::mutex> lock(work_mutex_);
+                        work_ += local;
+                      }
+                      if (progress) progress->advance(r.size());
+                    });
   return out;
 }
 

@@ -9,7 +9,6 @@
 namespace hrad::detail {
 namespace {
 
-
 struct Builder {
   const Solution& solution;
   ElementHierarchy& regions;
@@ -96,7 +95,8 @@ struct Builder {
     n.mean = leaf_sum > 0.0 ? Rgb(weighted / leaf_sum) : Rgb::Zero();
     Rgb deviation = Rgb::Zero();
     for (int f : leaves)
-      deviation += leaf_area[static_cast<std::size_t>(f)] * (solution.face_radiosity[static_cast<std::size_t>(f)] - n.mean).abs();
+      deviation += leaf_area[static_cast<std::size_t>(f)] *
+                   (solution.face_radiosity[static_cast<std::size_t>(f)] - n.mean).abs();
     n.mean_deviation = leaf_sum > 0.0 ? Rgb(deviation / leaf_sum) : Rgb::Zero();
     // Rounding of the leaves' areas is ~1e-15 relative for meshes written in double precision; a
     // file rounded to floats is ~1e-7 off. A gap or an overlap larger than that is not a tiling.

@@ -25,16 +25,16 @@ inline constexpr int kLeafQuadtreeMaxDepth = 40;
 struct LeafQuadtreeNode {
   std::uint32_t first_vertex = 0;  ///< the node's polygon: LeafQuadtrees::vertices()[first_vertex, + vertex_count)
   std::uint32_t vertex_count = 0;
-  std::uint32_t first_child = 0;   ///< children: LeafQuadtrees::children()[first_child, + child_count)
+  std::uint32_t first_child = 0;  ///< children: LeafQuadtrees::children()[first_child, + child_count)
   std::uint32_t child_count = 0;
-  int leaf = -1;                   ///< the Solution face of a leaf node; -1 for a region
-  std::uint32_t leaves = 1;        ///< leaves at or below
+  int leaf = -1;             ///< the Solution face of a leaf node; -1 for a region
+  std::uint32_t leaves = 1;  ///< leaves at or below
   double area = 0.0;
   /// Area-weighted mean of the leaves' face_radiosity.
   Rgb mean = Rgb::Zero();
   /// Area-weighted mean of |B_j - mean| over the leaves j, per channel (0 for a leaf).
   Rgb mean_deviation = Rgb::Zero();
-  bool tiled = true;               ///< the leaves cover the polygon (always true for a leaf)
+  bool tiled = true;  ///< the leaves cover the polygon (always true for a leaf)
   bool is_leaf() const { return leaf >= 0; }
 };
 

@@ -19,9 +19,9 @@
 namespace hrad {
 
 struct ProbeValue {
-  int patch = -1;                    ///< the patch whose front the point lies on, or -1 (a point in space)
-  Rgb irradiance = Rgb::Zero();      ///< H at the point facing its normal
-  Rgb radiosity = Rgb::Zero();       ///< E + rho H of that patch (0 when patch is -1)
+  int patch = -1;                ///< the patch whose front the point lies on, or -1 (a point in space)
+  Rgb irradiance = Rgb::Zero();  ///< H at the point facing its normal
+  Rgb radiosity = Rgb::Zero();   ///< E + rho H of that patch (0 when patch is -1)
 };
 
 /// The value at each probe, in parallel and deterministically (final_gather.h). A point found on a

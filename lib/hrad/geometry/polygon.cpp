@@ -90,7 +90,10 @@ std::vector<std::array<int, 3>> triangulate(std::span<const Vec3> p, const Vec3&
       bool empty = true;
       for (int j : ring) {
         if (j == ia || j == ib || j == ic) continue;
-        if (point_in_triangle(q[j], q[ia], q[ib], q[ic])) { empty = false; break; }
+        if (point_in_triangle(q[j], q[ia], q[ib], q[ic])) {
+          empty = false;
+          break;
+        }
       }
       if (!empty) continue;
       triangles.push_back({ia, ib, ic});
@@ -102,13 +105,15 @@ std::vector<std::array<int, 3>> triangulate(std::span<const Vec3> p, const Vec3&
       double least = INFINITY;
       for (std::size_t i = 0; i < k; ++i) {
         const double turn = std::abs(cross2(q[ring[i]] - q[ring[(i + k - 1) % k]], q[ring[(i + 1) % k]] - q[ring[i]]));
-        if (turn < least) { least = turn; flattest = i; }
+        if (turn < least) {
+          least = turn;
+          flattest = i;
+        }
       }
       ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(flattest));
     }
   }
-  if (cross2(q[ring[1]] - q[ring[0]], q[ring[2]] - q[ring[1]]) > 0.0)
-    triangles.push_back({ring[0], ring[1], ring[2]});
+  if (cross2(q[ring[1]] - q[ring[0]], q[ring[2]] - q[ring[1]]) > 0.0) triangles.push_back({ring[0], ring[1], ring[2]});
   return triangles;
 }
 

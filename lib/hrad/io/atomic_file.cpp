@@ -97,7 +97,6 @@ void unregister_path(const std::string& path) {
 
 // --- What a path names ------------------------------------------------------------------------------
 
-
 /// The file a path names: device and inode when it exists (links followed), else its canonical path.
 struct Identity {
   bool exists = false;
@@ -132,8 +131,7 @@ std::string existing_ancestor(const std::string& describe, fs::path folder) {
   std::error_code ec;
   while (true) {
     if (fs::exists(folder, ec)) {
-      if (!fs::is_directory(folder, ec))
-        throw Error(fmt::format("{}: {} is not a folder", describe, folder.string()));
+      if (!fs::is_directory(folder, ec)) throw Error(fmt::format("{}: {} is not a folder", describe, folder.string()));
       return folder.string();
     }
     if (!folder.has_parent_path() || folder.parent_path() == folder) return folder.string();
@@ -197,7 +195,8 @@ void OutputFiles::declare(const std::string& option, const std::string& path) {
   const std::string shown = describe(option, path);
   if (path.empty()) throw Error(fmt::format("{}: empty file name", option.empty() ? "output" : option));
   struct stat st {};
-  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) throw Error(fmt::format("{}: {}", shown, file_kind(st.st_mode)));
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    throw Error(fmt::format("{}: {}", shown, file_kind(st.st_mode)));
   if (!path.empty() && path.back() == '/') throw Error(fmt::format("{}: names a folder, not a file", shown));
   Output out{option, path, canonical_of(path), false};
   const Identity id = identity_of(path);
@@ -233,8 +232,8 @@ void OutputFiles::check_inputs(const std::vector<std::pair<std::string, std::str
     const Identity in = identity_of(input);
     for (const Output& o : outputs_)
       if (!o.folder && identity_of(o.path) == in)
-        throw Error(fmt::format("{} is {} ({}): an output never replaces an input", describe(o.option, o.path), what,
-                                input));
+        throw Error(
+            fmt::format("{} is {} ({}): an output never replaces an input", describe(o.option, o.path), what, input));
   }
 }
 
@@ -272,7 +271,8 @@ void OutputFiles::commit() {
     std::error_code ec;
     if (!fs::exists(tmp, ec)) continue;  // declared, never written
     fs::create_directories(fs::path(target).parent_path(), ec);
-    if (ec) throw Error(fmt::format("{}: cannot create folder: {}", fs::path(target).parent_path().string(), ec.message()));
+    if (ec)
+      throw Error(fmt::format("{}: cannot create folder: {}", fs::path(target).parent_path().string(), ec.message()));
     fs::rename(tmp, target, ec);
     if (ec) throw Error(fmt::format("{}: cannot write: {}", target, ec.message()));
     unregister_path(tmp);

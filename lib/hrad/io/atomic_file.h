@@ -19,11 +19,11 @@
 // Files are created with mode 0666 minus the umask, as any program's outputs.
 #pragma once
 
+#include <sys/types.h>
 #include <functional>
 #include <map>
 #include <ostream>
 #include <string>
-#include <sys/types.h>
 #include <utility>
 #include <vector>
 
@@ -76,9 +76,9 @@ class OutputFiles {
   std::string staging_for(const std::string& existing_ancestor);
 
   std::vector<Output> outputs_;
-  std::map<std::string, std::string> staging_;     ///< existing folder -> its staging folder
+  std::map<std::string, std::string> staging_;               ///< existing folder -> its staging folder
   std::vector<std::pair<std::string, std::string>> staged_;  ///< (temporary, target) in write order
-  std::vector<std::string> made_folders_;          ///< folders made inside staging folders
+  std::vector<std::string> made_folders_;                    ///< folders made inside staging folders
   OutputFiles* previous_ = nullptr;
   bool committed_ = false;
 };

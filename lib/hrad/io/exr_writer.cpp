@@ -47,14 +47,16 @@ HdrImage read_exr(const std::string& path) {
     std::vector<float> rgb(static_cast<std::size_t>(width) * height * 3, 0.0f);
     Imf::FrameBuffer frame;
     const char* names[3] = {"R", "G", "B"};
-    const std::ptrdiff_t origin = -(static_cast<std::ptrdiff_t>(window.min.x) + static_cast<std::ptrdiff_t>(window.min.y) * width);
+    const std::ptrdiff_t origin =
+        -(static_cast<std::ptrdiff_t>(window.min.x) + static_cast<std::ptrdiff_t>(window.min.y) * width);
     for (int c = 0; c < 3; ++c)
       frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(rgb.data() + c + 3 * origin),
                                         3 * sizeof(float), 3 * sizeof(float) * static_cast<std::size_t>(width)));
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
     HdrImage image(width, height);
-    for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = Rgb(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+      image.pixels[i] = Rgb(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]);
     return image;
   } catch (const std::exception& e) {
     throw Error(fmt::format("{}: cannot read the OpenEXR file: {}", path, e.what()));

@@ -42,8 +42,7 @@ std::vector<Vec3> read_polygon(const json& pair, const PairSite& site, const std
   if (p.size() < 3) site.fail(fmt::format("polygon '{}' has {} vertices (at least 3 needed)", key, p.size()));
   const Vec3 n = newell_normal(p);
   const double diameter = polygon_diameter(p);
-  if (!(0.5 * n.norm() > 1e-14 * diameter * diameter))
-    site.fail(fmt::format("polygon '{}' has zero area", key));
+  if (!(0.5 * n.norm() > 1e-14 * diameter * diameter)) site.fail(fmt::format("polygon '{}' has zero area", key));
   const double off_plane = planarity_deviation(p, n.normalized());
   if (off_plane > 1e-7 * diameter)
     site.fail(fmt::format("polygon '{}' is not planar (a vertex is {:.3g} off its plane, diameter {:.3g})", key,
@@ -105,8 +104,7 @@ std::vector<FormFactorQuery> read_formfactor_json(const std::string& text, const
   return queries;
 }
 
-std::string write_formfactor_json(std::span<const FormFactorQuery> queries,
-                                  std::span<const FormFactorAnswer> answers) {
+std::string write_formfactor_json(std::span<const FormFactorQuery> queries, std::span<const FormFactorAnswer> answers) {
   if (queries.size() != answers.size())
     throw Error(fmt::format("write_formfactor_json: {} queries but {} answers", queries.size(), answers.size()));
   std::string out = "{\"pairs\": [";

@@ -52,7 +52,6 @@ struct FormFactorAnswer {
 std::vector<FormFactorQuery> read_formfactor_json(const std::string& text, const std::string& path);
 
 /// The output document for `answers[i]` of `queries[i]` (same length), ending in a newline.
-std::string write_formfactor_json(std::span<const FormFactorQuery> queries,
-                                  std::span<const FormFactorAnswer> answers);
+std::string write_formfactor_json(std::span<const FormFactorQuery> queries, std::span<const FormFactorAnswer> answers);
 
 }  // namespace hrad

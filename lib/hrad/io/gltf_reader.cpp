@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <functional>
 
-#include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <Eigen/Geometry>
 
 #define TINYGLTF_IMPLEMENTATION
 #define TINYGLTF_NO_STB_IMAGE
@@ -63,7 +63,8 @@ std::vector<double> read_accessor(const tinygltf::Model& model, int index, int c
   if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= model.bufferViews.size())
     fail(fmt::format("accessor {} has no buffer view (sparse accessors are not read)", index));
   const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(a.bufferView)];
-  if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size()) fail("buffer index out of range");
+  if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size())
+    fail("buffer index out of range");
   const std::vector<unsigned char>& data = model.buffers[static_cast<std::size_t>(view.buffer)].data;
   const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
   if (size <= 0) fail(fmt::format("accessor {} has an unknown component type", index));
@@ -77,12 +78,35 @@ std::vector<double> read_accessor(const tinygltf::Model& model, int index, int c
     for (int c = 0; c < components; ++c) {
       const unsigned char* p = data.data() + start + i * stride + static_cast<std::size_t>(c * size);
       switch (a.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p, 4); out.push_back(v); break; }
-        case TINYGLTF_COMPONENT_TYPE_DOUBLE: { double v; std::memcpy(&v, p, 8); out.push_back(v); break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t v; std::memcpy(&v, p, 4); out.push_back(v); break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t v; std::memcpy(&v, p, 2); out.push_back(v); break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out.push_back(*p); break;
-        default: fail(fmt::format("accessor {}: component type {} is not read", index, a.componentType));
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+          float v;
+          std::memcpy(&v, p, 4);
+          out.push_back(v);
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_DOUBLE: {
+          double v;
+          std::memcpy(&v, p, 8);
+          out.push_back(v);
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+          std::uint32_t v;
+          std::memcpy(&v, p, 4);
+          out.push_back(v);
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+          std::uint16_t v;
+          std::memcpy(&v, p, 2);
+          out.push_back(v);
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+          out.push_back(*p);
+          break;
+        default:
+          fail(fmt::format("accessor {}: component type {} is not read", index, a.componentType));
       }
     }
   return out;
@@ -99,9 +123,9 @@ Scene read_gltf_scene(const std::string& path, std::vector<std::string>* warning
   const std::string base = std::filesystem::path(path).parent_path().string();
   const bool binary = bytes.rfind("glTF", 0) == 0;
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, static_cast<unsigned>(bytes.size()), base)
-                         : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
-                                                      static_cast<unsigned>(bytes.size()), base);
+  const bool ok =
+      binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, static_cast<unsigned>(bytes.size()), base)
+             : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()), base);
   if (!ok || !err.empty()) {
     std::string first = err.substr(0, err.find('\n'));
     throw Error(fmt::format("{}: not a readable glTF 2.0 file: {}", path, first.empty() ? "unknown error" : first));
@@ -111,7 +135,8 @@ Scene read_gltf_scene(const std::string& path, std::vector<std::string>* warning
   scene.path = path;
   scene.files.push_back(path);
   for (const tinygltf::Buffer& b : model.buffers)
-    if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0) scene.files.push_back((std::filesystem::path(base) / b.uri).string());
+    if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0)
+      scene.files.push_back((std::filesystem::path(base) / b.uri).string());
   detail::FaceTallies tallies;
   std::map<int, int> material_of;  // glTF material -> scene material
   const auto scene_material = [&](int m, std::size_t face_number) {
@@ -163,7 +188,7 @@ Scene read_gltf_scene(const std::string& path, std::vector<std::string>* warning
         if (idx.size() % 3 != 0)
           throw Error(fmt::format("{}: {}/indices: {} indices do not make triangles", path, pointer, idx.size()));
         // The node's name, as exporters name the object (Blender's OBJ `o` lines carry the same name).
-        const std::string group = !node.name.empty() ? node.name
+        const std::string group = !node.name.empty()   ? node.name
                                   : !mesh.name.empty() ? mesh.name
                                                        : fmt::format("mesh_{}", node.mesh);
         for (std::size_t t = 0; t < idx.size(); t += 3) {
@@ -171,7 +196,8 @@ Scene read_gltf_scene(const std::string& path, std::vector<std::string>* warning
           for (int k = 0; k < 3; ++k) {
             const double i = idx[t + static_cast<std::size_t>(k)];
             if (!(i >= 0 && i < static_cast<double>(vertices)))
-              throw Error(fmt::format("{}: {}/indices: index {} out of range ({} vertices)", path, pointer, i, vertices));
+              throw Error(
+                  fmt::format("{}: {}/indices: index {} out of range ({} vertices)", path, pointer, i, vertices));
             const auto vi = static_cast<std::size_t>(i);
             const Eigen::Vector4d x = world * Eigen::Vector4d(p[3 * vi], p[3 * vi + 1], p[3 * vi + 2], 1.0);
             v.push_back(x.head<3>());
@@ -190,7 +216,8 @@ Scene read_gltf_scene(const std::string& path, std::vector<std::string>* warning
   };
   const int s = model.defaultScene >= 0 ? model.defaultScene : 0;
   if (model.scenes.empty()) throw Error(fmt::format("{}: /scenes: no scene", path));
-  if (static_cast<std::size_t>(s) >= model.scenes.size()) throw Error(fmt::format("{}: /scene: index out of range", path));
+  if (static_cast<std::size_t>(s) >= model.scenes.size())
+    throw Error(fmt::format("{}: /scene: index out of range", path));
   for (int n : model.scenes[static_cast<std::size_t>(s)].nodes) visit(n, Transform::Identity(), 0);
   detail::report_tallies(path, tallies, warnings);
   if (scene.patches.empty()) throw Error(fmt::format("{}: no patch left (no triangle with a positive area)", path));

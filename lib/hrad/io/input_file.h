@@ -2,8 +2,8 @@
 // scene or solution is refused with a message instead of hanging the program.
 #pragma once
 
-#include <string>
 #include <sys/types.h>
+#include <string>
 
 namespace hrad {
 

@@ -1,14 +1,14 @@
 #include "hrad/io/obj_reader.h"
 
-#include <cctype>
-#include <optional>
-#include <charconv>
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -143,12 +143,12 @@ class MaterialNames {
 
 // Where each statement of the OBJ stands, found by one pass over its (rewritten) lines.
 struct ObjLines {
-  std::vector<std::string> text;     // the lines as tinyobjloader reads them
-  std::vector<std::size_t> vertex;   // line of the k-th `v`
-  std::vector<double> coordinates;   // x y z of the k-th `v`, as this pass read them
-  int decimals = -1;                 // the decimals every fixed-notation coordinate has; -2 when they differ
-  std::vector<std::size_t> face;     // line of the k-th `f`
-  std::vector<std::vector<std::string>> mtllib;  // the files of the k-th `mtllib` line
+  std::vector<std::string> text;    // the lines as tinyobjloader reads them
+  std::vector<std::size_t> vertex;  // line of the k-th `v`
+  std::vector<double> coordinates;  // x y z of the k-th `v`, as this pass read them
+  int decimals = -1;                // the decimals every fixed-notation coordinate has; -2 when they differ
+  std::vector<std::size_t> face;    // line of the k-th `f`
+  std::vector<std::vector<std::string>> mtllib;     // the files of the k-th `mtllib` line
   std::map<std::string, std::size_t> first_usemtl;  // material id -> first `usemtl` line
 };
 
@@ -161,13 +161,15 @@ std::vector<std::string> mtllib_files(const std::string& path, std::size_t line,
   std::vector<std::string> files;
   for (std::string name : tokens_of(argument)) {
     if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = name.substr(1, name.size() - 2);
-    if (!std::filesystem::exists(dir / name, ec)) throw_at(path, line, fmt::format("cannot open material library '{}'", name));
+    if (!std::filesystem::exists(dir / name, ec))
+      throw_at(path, line, fmt::format("cannot open material library '{}'", name));
     files.push_back(name);
   }
   return files;
 }
 
-ObjLines scan_obj(const std::string& path, const std::string& bytes, const ObjReadOptions& options, MaterialNames& names) {
+ObjLines scan_obj(const std::string& path, const std::string& bytes, const ObjReadOptions& options,
+                  MaterialNames& names) {
   ObjLines at;
   at.text = split_lines(path, bytes);
   bool any_statement = false;
@@ -210,8 +212,8 @@ ObjLines scan_obj(const std::string& path, const std::string& bytes, const ObjRe
       if (name.empty()) throw_at(path, line, "usemtl names no material");
       at.text[i] = "usemtl " + names.id_of(name);
       at.first_usemtl.emplace(names.id_of(name), line);
-    } else if (key == "vt" || key == "vn" || key == "vp" || key == "o" || key == "g" || key == "s" ||
-               key == "l" || key == "p") {
+    } else if (key == "vt" || key == "vn" || key == "vp" || key == "o" || key == "g" || key == "s" || key == "l" ||
+               key == "p") {
       // texture coordinates, normals, groups and smoothing are accepted; lines and points ignored
     } else {
       std::string shown = key.substr(0, 32);
@@ -230,7 +232,8 @@ struct MtlLines {
   std::string path;
   std::vector<std::string> text;  // the lines as tinyobjloader reads them
   std::map<std::string, std::size_t> newmtl, kd, ke;
-  std::map<std::string, Rgb> kd_value, ke_value;  // as this pass read them (tinyobjloader's parser is off by an ulp at times)
+  std::map<std::string, Rgb> kd_value,
+      ke_value;  // as this pass read them (tinyobjloader's parser is off by an ulp at times)
 };
 
 MtlLines scan_mtl(const std::string& path, const std::string& bytes, MaterialNames& names) {
@@ -271,9 +274,10 @@ MtlLines scan_mtl(const std::string& path, const std::string& bytes, MaterialNam
 // all of them, from the OBJ's folder, remembering where each was found for messages.
 class MtlReader : public tinyobj::MaterialReader {
  public:
-  MtlReader(std::string dir, const ObjLines& obj, MaterialNames& names) : dir_(std::move(dir)), obj_(obj), names_(names) {}
-  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
-                  std::map<std::string, int>* ids, std::string* warn, std::string* err) override {
+  MtlReader(std::string dir, const ObjLines& obj, MaterialNames& names)
+      : dir_(std::move(dir)), obj_(obj), names_(names) {}
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials, std::map<std::string, int>* ids,
+                  std::string* warn, std::string* err) override {
     const std::size_t k = static_cast<std::size_t>(std::stoul(name));
     for (const std::string& file : obj_.mtllib.at(k)) {
       const std::string path = (std::filesystem::path(dir_) / file).string();
@@ -346,7 +350,8 @@ Scene read_obj_scene(const std::string& path, std::vector<std::string>* warnings
   // reads 0.057678 one ulp off); the parser's must agree to far better than any real difference
   // (the hex float "0x1p2": 4 for strtod, 0 for tinyobjloader), else the file is refused.
   if (attrib.vertices.size() != at.coordinates.size())
-    throw_at(path, 0, fmt::format("{} `v` statements, but {} vertices parsed", at.vertex.size(), attrib.vertices.size() / 3));
+    throw_at(path, 0,
+             fmt::format("{} `v` statements, but {} vertices parsed", at.vertex.size(), attrib.vertices.size() / 3));
   for (std::size_t i = 0; i < at.coordinates.size(); ++i)
     if (!(std::abs(attrib.vertices[i] - at.coordinates[i]) <= 1e-12 * std::abs(at.coordinates[i])))
       throw_at(path, at.vertex[i / 3],

@@ -32,12 +32,12 @@ inline constexpr double kDefaultReflectance = 0.5;
 struct ObjReadOptions {
   /// Relative to the face's diameter; the tolerance is never below what the file's printed digits
   /// allow: sqrt(3) times 10^-d when every coordinate is printed with the same d >= 3 decimals
-  /// (Blender writes 6, so a 1 m face off its plane by 1.4e-7 of its diameter is planar). 1e-5: single-precision exporters round at
-  /// ~6e-8 of the coordinates' size, which is ~1e-5 of a face 200x smaller than the scene's extent;
+  /// (Blender writes 6, so a 1 m face off its plane by 1.4e-7 of its diameter is planar). 1e-5: single-precision
+  /// exporters round at ~6e-8 of the coordinates' size, which is ~1e-5 of a face 200x smaller than the scene's extent;
   /// a bend that size changes no form factor beyond its own order, and truly bent faces (the
   /// published Cornell box's red wall: 1.5e-3) are still split.
   double planarity_tolerance = 1e-5;
-  double max_abs_coordinate = 1e12;   ///< larger coordinates are rejected as garbage
+  double max_abs_coordinate = 1e12;  ///< larger coordinates are rejected as garbage
   /// Progress lines while reading large files (at most one every 2 s; none for small files).
   ProgressSink progress;
 };

@@ -68,9 +68,7 @@ const PlyElement* PlyData::element(const std::string& wanted) const {
   return nullptr;
 }
 
-bool looks_like_ply(const std::string& bytes) {
-  return bytes.rfind("ply\n", 0) == 0 || bytes.rfind("ply\r\n", 0) == 0;
-}
+bool looks_like_ply(const std::string& bytes) { return bytes.rfind("ply\n", 0) == 0 || bytes.rfind("ply\r\n", 0) == 0; }
 
 PlyData parse_ply(const std::string& path, const std::string& bytes) {
   auto fail = [&](const std::string& what) { throw Error(fmt::format("{}: not a readable PLY file: {}", path, what)); };
@@ -180,7 +178,8 @@ PlyData parse_ply(const std::string& path, const std::string& bytes) {
         const Layout& layout = layouts[ei][pi];
         std::size_t n = 1;
         if (prop.list) {
-          if (at + layout.count_size > bytes.size()) fail(fmt::format("truncated in element '{}' record {}", e.name, r));
+          if (at + layout.count_size > bytes.size())
+            fail(fmt::format("truncated in element '{}' record {}", e.name, r));
           const double count = decode(layout.count_type, bytes.data() + at, swap);
           if (!(count >= 0 && count <= kMaxListLength))
             fail(fmt::format("bad list length {} in element '{}' record {}", count, e.name, r));

@@ -16,7 +16,7 @@ namespace hrad {
 
 struct PlyProperty {
   std::string name;
-  std::string type;          ///< item type as written ("double", "float", "uchar", ...)
+  std::string type;  ///< item type as written ("double", "float", "uchar", ...)
   bool list = false;
   /// Scalars: one value per record. Lists: the items of record r are values[offsets[r], offsets[r + 1]).
   std::vector<double> values;

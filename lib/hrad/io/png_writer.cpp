@@ -84,7 +84,8 @@ void write_png(const std::string& path, const Image& image) {
   static_assert(sizeof(Rgb8) == 3, "Image pixels are packed RGB triples");
   std::vector<png_bytep> rows(image.height);
   for (int y = 0; y < image.height; ++y)
-    rows[y] = const_cast<png_bytep>(reinterpret_cast<const png_byte*>(&image.pixels[static_cast<std::size_t>(y) * image.width]));
+    rows[y] = const_cast<png_bytep>(
+        reinterpret_cast<const png_byte*>(&image.pixels[static_cast<std::size_t>(y) * image.width]));
   write_path_atomically(path, [&](const std::string& tmp) {
     File file(std::fopen(tmp.c_str(), "wb"));
     if (!file) throw Error(fmt::format("{}: cannot open for writing", path));

@@ -66,12 +66,14 @@ std::vector<ProbePoint> read_points_csv(const std::string& path) {
   } catch (const io::error::header_missing&) {
     throw_at(path, 0, fmt::format("empty file: expected the header {}", kHeader));
   } catch (const io::error::missing_column_in_header& e) {
-    throw_at(path, reader->get_file_line(), fmt::format("expected the header {}: no column '{}'", kHeader, e.column_name));
+    throw_at(path, reader->get_file_line(),
+             fmt::format("expected the header {}: no column '{}'", kHeader, e.column_name));
   } catch (const io::error::extra_column_in_header& e) {
     throw_at(path, reader->get_file_line(),
              fmt::format("expected the header {}: unexpected column '{}'", kHeader, e.column_name));
   } catch (const io::error::duplicated_column_in_header& e) {
-    throw_at(path, reader->get_file_line(), fmt::format("expected the header {}: column '{}' twice", kHeader, e.column_name));
+    throw_at(path, reader->get_file_line(),
+             fmt::format("expected the header {}: column '{}' twice", kHeader, e.column_name));
   } catch (const io::error::base&) {
     throw_at(path, reader->get_file_line(), fmt::format("expected the header {}", kHeader));
   }

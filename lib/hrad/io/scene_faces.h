@@ -27,8 +27,8 @@ int default_material(Scene& scene, std::size_t line, FaceTallies& tallies);
 
 /// Appends `face` (material and line set) to scene.faces and its patches to scene.patches.
 /// `step` is the coarsest printed step of its coordinates (0 for binary files): see ObjReadOptions.
-void add_input_face(Scene& scene, InputFace face, std::vector<Vec3> vertices, double step, const ObjReadOptions& options,
-                    FaceTallies& tallies);
+void add_input_face(Scene& scene, InputFace face, std::vector<Vec3> vertices, double step,
+                    const ObjReadOptions& options, FaceTallies& tallies);
 
 /// One warning per kind of finding, "path:line: warning: ..." at the first face it concerns.
 void report_tallies(const std::string& path, const FaceTallies& tallies, std::vector<std::string>* warnings);

@@ -18,8 +18,8 @@ nlohmann::json scene_summary_json(const Scene& scene) {
   for (std::size_t i = 0; i < scene.faces.size(); ++i) {
     const InputFace& f = scene.faces[i];
     const Material& m = scene.materials[f.material];
-    nlohmann::json e = {{"face", i}, {"line", f.line}, {"group", f.group}, {"material", m.name},
-                        {"area", f.area}, {"patches", f.patches.size()}};
+    nlohmann::json e = {{"face", i},          {"line", f.line}, {"group", f.group},
+                        {"material", m.name}, {"area", f.area}, {"patches", f.patches.size()}};
     if (m.is_emitter()) emitters.push_back(e);
     faces.push_back(std::move(e));
   }

@@ -51,11 +51,13 @@ Scene read_ply_scene(const std::string& path, std::vector<std::string>* warnings
   const PlyData ply = parse_ply(path, bytes);
   const PlyElement* vertex = ply.element("vertex");
   const PlyElement* face = ply.element("face");
-  if (vertex == nullptr || face == nullptr) throw Error(fmt::format("{}: a PLY scene needs 'vertex' and 'face' elements", path));
+  if (vertex == nullptr || face == nullptr)
+    throw Error(fmt::format("{}: a PLY scene needs 'vertex' and 'face' elements", path));
   if (face->property("radiosity_r") && face->property("patch"))
-    throw Error(fmt::format("{}: this is a solution written by 'hrad solve' (per-element radiosity), not a scene: solve "
-                            "the scene it came from, or draw it with 'hrad render'",
-                            path));
+    throw Error(
+        fmt::format("{}: this is a solution written by 'hrad solve' (per-element radiosity), not a scene: solve "
+                    "the scene it came from, or draw it with 'hrad render'",
+                    path));
   const auto scalar = [&](const PlyElement& e, const char* name) -> const std::vector<double>* {
     const PlyProperty* p = e.property(name);
     return p != nullptr && !p->list ? &p->values : nullptr;

@@ -21,7 +21,8 @@ namespace {
 constexpr const char* kChannel[3] = {"radiosity_r", "radiosity_g", "radiosity_b"};
 constexpr const char* kPatch = "patch";
 // Written as a header comment; a file carrying it has its positions turned back on reading.
-constexpr const char* kZUpComment = "hrad axes: stored (x, -z, y) of the scene's (x, y, z): +Z up, as Blender imports PLY";
+constexpr const char* kZUpComment =
+    "hrad axes: stored (x, -z, y) of the scene's (x, y, z): +Z up, as Blender imports PLY";
 
 void check_consistent(const std::string& path, const Solution& s) {
   auto fail = [&](const std::string& what) { throw Error(fmt::format("{}: cannot write solution: {}", path, what)); };
@@ -51,8 +52,8 @@ void put(std::string& out, T value) {
 const std::vector<double>& values_of(const std::string& path, const PlyElement& e, const char* name) {
   const PlyProperty* p = e.property(name);
   if (p == nullptr || p->list)
-    throw Error(fmt::format("{}: not an hrad solution: no {} property '{}'", path, e.name == "vertex" ? "vertex" : "face",
-                            name));
+    throw Error(fmt::format("{}: not an hrad solution: no {} property '{}'", path,
+                            e.name == "vertex" ? "vertex" : "face", name));
   return p->values;
 }
 
@@ -101,7 +102,8 @@ void write_solution_ply(const std::string& path, const Solution& solution, doubl
 
 Solution read_solution_ply(const std::string& path) {
   const std::string bytes = read_input_file(path);
-  if (!looks_like_ply(bytes)) throw Error(fmt::format("{}: not a readable PLY file: it does not start with 'ply'", path));
+  if (!looks_like_ply(bytes))
+    throw Error(fmt::format("{}: not a readable PLY file: it does not start with 'ply'", path));
   const PlyData ply = parse_ply(path, bytes);
   const PlyElement* vertex = ply.element("vertex");
   const PlyElement* face = ply.element("face");
@@ -156,9 +158,10 @@ Solution read_solution_ply(const std::string& path) {
     patches = std::max(patches, s.face_patch.back() + 1);
   }
   if (invalid > 0)
-    throw Error(fmt::format("{}: {} of {} faces are invalid (fewer than 3 vertices or a vertex index out of range; "
-                            "the first is face {})",
-                            path, invalid, face->count, first_invalid));
+    throw Error(
+        fmt::format("{}: {} of {} faces are invalid (fewer than 3 vertices or a vertex index out of range; "
+                    "the first is face {})",
+                    path, invalid, face->count, first_invalid));
 
   // patch_radiosity: area-weighted mean of each patch's faces (Solution's definition).
   std::vector<Rgb> sum(patches, Rgb::Zero());
@@ -178,7 +181,8 @@ void check_solution_patches(const Solution& solution, const std::string& solutio
                             const std::string& scene_path) {
   for (int p : solution.face_patch)
     if (p < 0 || static_cast<std::size_t>(p) >= scene.patches.size())
-      throw Error(fmt::format("{}: patch id {} but {} has {} patches", solution_path, p, scene_path, scene.patches.size()));
+      throw Error(
+          fmt::format("{}: patch id {} but {} has {} patches", solution_path, p, scene_path, scene.patches.size()));
 }
 
 }  // namespace hrad

@@ -21,7 +21,8 @@ std::size_t ElementHierarchy::balance(double weld_tolerance) {
     for (std::size_t f = 0; f < leaf_ids.size(); ++f) {
       const ElementNode& e = node(leaf_ids[f]);
       detail::PointGrid& grid = grids.try_emplace(group[static_cast<std::size_t>(e.patch)], cell, tol).first->second;
-      for (int k = 0; k < e.vertex_count; ++k) corners[f][static_cast<std::size_t>(k)] = grid.weld(e.vertices[static_cast<std::size_t>(k)]);
+      for (int k = 0; k < e.vertex_count; ++k)
+        corners[f][static_cast<std::size_t>(k)] = grid.weld(e.vertices[static_cast<std::size_t>(k)]);
     }
     // A neighbour one level finer puts one corner inside an edge (its midpoint); two or more corners
     // inside an edge mean a neighbour at least two levels finer.
@@ -30,7 +31,8 @@ std::size_t ElementHierarchy::balance(double weld_tolerance) {
       const ElementNode& e = node(leaf_ids[f]);
       const detail::PointGrid& grid = grids.at(group[static_cast<std::size_t>(e.patch)]);
       for (int k = 0; k < e.vertex_count; ++k) {
-        const int a = corners[f][static_cast<std::size_t>(k)], b = corners[f][static_cast<std::size_t>((k + 1) % e.vertex_count)];
+        const int a = corners[f][static_cast<std::size_t>(k)],
+                  b = corners[f][static_cast<std::size_t>((k + 1) % e.vertex_count)];
         if (a != b && grid.on_segment(a, b).size() > 1) {
           coarse.push_back(leaf_ids[f]);
           break;

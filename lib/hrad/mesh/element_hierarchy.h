@@ -24,15 +24,15 @@ struct ElementNode {
   std::array<Vec3, 4> vertices{};  ///< counter-clockwise seen from the patch's front; [3] unused for triangles
   int vertex_count = 0;            ///< 3 or 4
   double area = 0.0;
-  int patch = -1;                  ///< index into Scene::patches
+  int patch = -1;  ///< index into Scene::patches
   NodeId parent = kNoNode;
-  NodeId first_child = kNoNode;    ///< the 4 children are first_child .. first_child + 3; kNoNode for a leaf
-  int depth = 0;                   ///< 0 for a patch's root
+  NodeId first_child = kNoNode;  ///< the 4 children are first_child .. first_child + 3; kNoNode for a leaf
+  int depth = 0;                 ///< 0 for a patch's root
 
-  Rgb radiosity = Rgb::Zero();     ///< B: the unknown, per channel
-  Rgb emission = Rgb::Zero();      ///< E: the patch's emission (copied down at construction and split)
-  Rgb reflectance = Rgb::Zero();   ///< rho: the patch's reflectance
-  Rgb gathered = Rgb::Zero();      ///< sum over links of F(this -> source) * B(source), before reflection
+  Rgb radiosity = Rgb::Zero();    ///< B: the unknown, per channel
+  Rgb emission = Rgb::Zero();     ///< E: the patch's emission (copied down at construction and split)
+  Rgb reflectance = Rgb::Zero();  ///< rho: the patch's reflectance
+  Rgb gathered = Rgb::Zero();     ///< sum over links of F(this -> source) * B(source), before reflection
 
   bool is_leaf() const { return first_child == kNoNode; }
   std::span<const Vec3> polygon() const { return {vertices.data(), static_cast<std::size_t>(vertex_count)}; }

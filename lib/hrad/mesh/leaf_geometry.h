@@ -93,7 +93,8 @@ class PointGrid {
     }
   };
   Key key(const Vec3& p) const {
-    return Key{static_cast<std::int64_t>(std::floor(p.x() / cell_)), static_cast<std::int64_t>(std::floor(p.y() / cell_)),
+    return Key{static_cast<std::int64_t>(std::floor(p.x() / cell_)),
+               static_cast<std::int64_t>(std::floor(p.y() / cell_)),
                static_cast<std::int64_t>(std::floor(p.z() / cell_))};
   }
 
@@ -149,8 +150,9 @@ inline std::pair<double, double> weld_scale(const ElementHierarchy& h, const std
   edge_lengths.reserve(leaf_ids.size());
   for (NodeId id : leaf_ids) edge_lengths.push_back((h.node(id).vertices[1] - h.node(id).vertices[0]).norm());
   const double shortest_edge = *std::min_element(edge_lengths.begin(), edge_lengths.end());
-  const double tol =
-      weld_tolerance > 0.0 ? weld_tolerance : std::min(1e-9 * diagonal, shortest_edge > 0.0 ? 1e-3 * shortest_edge : INFINITY);
+  const double tol = weld_tolerance > 0.0
+                         ? weld_tolerance
+                         : std::min(1e-9 * diagonal, shortest_edge > 0.0 ? 1e-3 * shortest_edge : INFINITY);
   std::nth_element(edge_lengths.begin(), edge_lengths.begin() + edge_lengths.size() / 2, edge_lengths.end());
   return {tol, std::max(edge_lengths[edge_lengths.size() / 2], 4.0 * tol)};
 }

@@ -21,7 +21,8 @@ using LeafMesh = OpenMesh::PolyMesh_ArrayKernelT<LeafMeshTraits>;
 
 }  // namespace
 
-Solution ElementHierarchy::to_solution(double weld_tolerance, std::span<const std::array<Rgb, 9>> point_radiosity) const {
+Solution ElementHierarchy::to_solution(double weld_tolerance,
+                                       std::span<const std::array<Rgb, 9>> point_radiosity) const {
   Solution out;
   const std::vector<NodeId> leaf_ids = all_leaves();
   if (leaf_ids.empty()) return out;
@@ -117,7 +118,8 @@ Solution ElementHierarchy::to_solution(double weld_tolerance, std::span<const st
         const std::array<Rgb, 9>& v = point_radiosity[static_cast<std::size_t>(id)];
         const auto [k, t] = along[f][j];
         const int n = e.vertex_count;
-        value = 2.0 * (t - 0.5) * (t - 1.0) * v[static_cast<std::size_t>(k)] - 4.0 * t * (t - 1.0) * v[static_cast<std::size_t>(n + k)] +
+        value = 2.0 * (t - 0.5) * (t - 1.0) * v[static_cast<std::size_t>(k)] -
+                4.0 * t * (t - 1.0) * v[static_cast<std::size_t>(n + k)] +
                 2.0 * t * (t - 0.5) * v[static_cast<std::size_t>((k + 1) % n)];
       }
       sum[static_cast<std::size_t>(key)] += e.area * value;

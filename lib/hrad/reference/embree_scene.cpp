@@ -17,10 +17,10 @@ struct EmbreeScene::Impl {
   const Scene* scene = nullptr;
   RTCDevice device = nullptr;
   RTCScene bvh = nullptr;
-  Vec3 centre = Vec3::Zero();          ///< subtracted before rounding to float (precision where the scene is)
-  std::vector<int> triangle_patch;     ///< Embree primitive id -> patch
-  std::vector<Vec3> plane_normal;      ///< per patch: unit front normal
-  std::vector<double> plane_offset;    ///< per patch: normal . (a point of the plane)
+  Vec3 centre = Vec3::Zero();        ///< subtracted before rounding to float (precision where the scene is)
+  std::vector<int> triangle_patch;   ///< Embree primitive id -> patch
+  std::vector<Vec3> plane_normal;    ///< per patch: unit front normal
+  std::vector<double> plane_offset;  ///< per patch: normal . (a point of the plane)
   double tolerance = 0.0;
 
   bool on_plane(int patch, const Vec3& x) const {
@@ -30,7 +30,8 @@ struct EmbreeScene::Impl {
   /// Patches a and b lie in one plane and face the same way.
   bool same_plane_same_side(int a, int b) const {
     const auto i = static_cast<std::size_t>(a), j = static_cast<std::size_t>(b);
-    return plane_normal[i].dot(plane_normal[j]) >= 1.0 - 1e-12 && std::abs(plane_offset[i] - plane_offset[j]) <= tolerance;
+    return plane_normal[i].dot(plane_normal[j]) >= 1.0 - 1e-12 &&
+           std::abs(plane_offset[i] - plane_offset[j]) <= tolerance;
   }
 
   ~Impl() {

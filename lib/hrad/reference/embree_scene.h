@@ -33,8 +33,8 @@ struct RayCounts {
 
 /// The first patch along a ray.
 struct RayHit {
-  int patch = -1;      ///< index into Scene::patches; -1 when the ray leaves the scene
-  bool front = false;  ///< the ray arrived at the patch's front (its normal faces the ray's origin)
+  int patch = -1;             ///< index into Scene::patches; -1 when the ray leaves the scene
+  bool front = false;         ///< the ray arrived at the patch's front (its normal faces the ray's origin)
   Vec3 point = Vec3::Zero();  ///< the hit, on the patch's plane to double rounding
 };
 

@@ -45,7 +45,7 @@ struct PowerBalance {
   Rgb sampled_se = Rgb::Zero();           ///< standard error of the three sampled terms' sum
   /// emitted - absorbed_reflecting - absorbed_black - onto_backs - escaped.
   Rgb residual = Rgb::Zero();
-  std::uint64_t rays = 0;                 ///< rays cast (each one embree closest-hit query or two)
+  std::uint64_t rays = 0;  ///< rays cast (each one embree closest-hit query or two)
 
   /// Largest |residual| / emitted over the channels that emit (0 if none does).
   double relative_residual() const;

@@ -41,7 +41,8 @@ std::vector<detail::RunningStats> run_blocks(std::size_t queries, const std::vec
                                              std::string_view unit, const ReferenceOptions& options, RayCounts* rays,
                                              const Trace& trace) {
   std::vector<std::size_t> first_item(queries + 1, 0);
-  for (std::size_t q = 0; q < queries; ++q) first_item[q + 1] = first_item[q] + static_cast<std::size_t>(blocks_per_query[q]);
+  for (std::size_t q = 0; q < queries; ++q)
+    first_item[q + 1] = first_item[q] + static_cast<std::size_t>(blocks_per_query[q]);
   const std::size_t items = first_item[queries];
   std::vector<std::size_t> item_query(items);
   for (std::size_t q = 0; q < queries; ++q)
@@ -139,12 +140,12 @@ ReferenceSummary reference_points(const Scene& scene, std::span<const ProbePoint
     }
 
     const std::vector<int> blocks(points.size(), block_count(static_cast<std::uint64_t>(options.samples)));
-    const std::vector<detail::RunningStats> stats = run_blocks(
-        points.size(), blocks, "points", options, &counts,
-        [&](std::size_t q, std::size_t block, detail::Rng& rng, RayCounts& c, detail::RunningStats& s) {
-          const auto [begin, end] = block_range(block, options.samples);
-          for (int k = begin; k < end; ++k) s.add(tracer.irradiance(position[q], normal[q], rng, c));
-        });
+    const std::vector<detail::RunningStats> stats =
+        run_blocks(points.size(), blocks, "points", options, &counts,
+                   [&](std::size_t q, std::size_t block, detail::Rng& rng, RayCounts& c, detail::RunningStats& s) {
+                     const auto [begin, end] = block_range(block, options.samples);
+                     for (int k = begin; k < end; ++k) s.add(tracer.irradiance(position[q], normal[q], rng, c));
+                   });
 
     std::uint64_t paths = 0;
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -178,26 +179,27 @@ ReferenceSummary reference_faces(const Scene& scene, const ReferenceOptions& opt
       samplers[f] = detail::AreaSampler(scene, scene.faces[f].patches, unit_weight);
       bool reflects = false;
       for (int p : scene.faces[f].patches)
-        reflects = reflects || scene.material_of(scene.patches[static_cast<std::size_t>(p)]).reflectance.maxCoeff() > 0.0;
+        reflects =
+            reflects || scene.material_of(scene.patches[static_cast<std::size_t>(p)]).reflectance.maxCoeff() > 0.0;
       if (reflects && !samplers[f].empty()) blocks[f] = block_count(static_cast<std::uint64_t>(samples));
     }
 
-    const std::vector<detail::RunningStats> stats = run_blocks(
-        faces, blocks, "faces", options, &counts,
-        [&](std::size_t f, std::size_t block, detail::Rng& rng, RayCounts& c, detail::RunningStats& s) {
-          const auto [begin, end] = block_range(block, samples);
-          for (int k = begin; k < end; ++k) {
-            double u = rng.uniform(), v = rng.uniform();
-            if (k < columns * rows) {
-              u = (k % columns + u) / columns;
-              v = (k / columns + v) / rows;
-            }
-            const detail::SurfacePoint x = samplers[f].sample(u, v);
-            const Patch& p = scene.patches[static_cast<std::size_t>(x.patch)];
-            const Material& m = scene.material_of(p);
-            s.add(m.emission + m.reflectance * tracer.irradiance(x.point, p.normal, rng, c));
-          }
-        });
+    const std::vector<detail::RunningStats> stats =
+        run_blocks(faces, blocks, "faces", options, &counts,
+                   [&](std::size_t f, std::size_t block, detail::Rng& rng, RayCounts& c, detail::RunningStats& s) {
+                     const auto [begin, end] = block_range(block, samples);
+                     for (int k = begin; k < end; ++k) {
+                       double u = rng.uniform(), v = rng.uniform();
+                       if (k < columns * rows) {
+                         u = (k % columns + u) / columns;
+                         v = (k / columns + v) / rows;
+                       }
+                       const detail::SurfacePoint x = samplers[f].sample(u, v);
+                       const Patch& p = scene.patches[static_cast<std::size_t>(x.patch)];
+                       const Material& m = scene.material_of(p);
+                       s.add(m.emission + m.reflectance * tracer.irradiance(x.point, p.normal, rng, c));
+                     }
+                   });
 
     std::uint64_t paths = 0;
     std::vector<FaceEstimate> estimates(faces);
@@ -209,8 +211,8 @@ ReferenceSummary reference_faces(const Scene& scene, const ReferenceOptions& opt
       } else {
         // Nothing reflects: the radiosity is the emission, the same on each of its patches.
         const InputFace& face = scene.faces[f];
-        estimates[f].radiosity = face.material >= 0 ? scene.materials[static_cast<std::size_t>(face.material)].emission
-                                                    : Rgb::Zero();
+        estimates[f].radiosity =
+            face.material >= 0 ? scene.materials[static_cast<std::size_t>(face.material)].emission : Rgb::Zero();
       }
     }
     if (out) *out = std::move(estimates);

@@ -58,9 +58,9 @@ struct ReferenceSummary {
   std::uint64_t closest_hit_rays = 0;  ///< embree closest-hit queries (bounces)
   std::uint64_t shadow_rays = 0;       ///< embree occlusion queries (next-event estimation)
   std::uint64_t rays() const { return closest_hit_rays + shadow_rays; }
-  std::uint64_t paths = 0;             ///< paths traced (faces that cannot reflect need none)
-  double build_seconds = 0.0;          ///< building the BVH
-  double trace_seconds = 0.0;          ///< tracing the paths
+  std::uint64_t paths = 0;     ///< paths traced (faces that cannot reflect need none)
+  double build_seconds = 0.0;  ///< building the BVH
+  double trace_seconds = 0.0;  ///< tracing the paths
   double total_seconds = 0.0;
 };
 
@@ -69,8 +69,8 @@ struct PointEstimate {
   Rgb irradiance_se = Rgb::Zero();  ///< its standard error
   /// The patch whose front the point lies on (front_patch_at), or -1 for a point in space.
   int patch = -1;
-  Rgb radiosity = Rgb::Zero();      ///< E + rho H of that patch (0 when patch is -1)
-  Rgb radiosity_se = Rgb::Zero();   ///< rho times irradiance_se
+  Rgb radiosity = Rgb::Zero();     ///< E + rho H of that patch (0 when patch is -1)
+  Rgb radiosity_se = Rgb::Zero();  ///< rho times irradiance_se
 };
 
 struct FaceEstimate {

@@ -38,9 +38,7 @@ struct RunningStats {
   /// Unbiased sample variance of one estimate (0 below two samples).
   Rgb variance() const { return count > 1 ? Rgb(squared_deviations / static_cast<double>(count - 1)) : Rgb::Zero(); }
   /// Standard error of the mean: sqrt(variance / count).
-  Rgb standard_error() const {
-    return count > 0 ? Rgb((variance() / static_cast<double>(count)).sqrt()) : Rgb::Zero();
-  }
+  Rgb standard_error() const { return count > 0 ? Rgb((variance() / static_cast<double>(count)).sqrt()) : Rgb::Zero(); }
 };
 
 }  // namespace hrad::detail

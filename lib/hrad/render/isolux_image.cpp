@@ -75,8 +75,8 @@ IsoluxImage render_isolux(std::span<const double> values, int nu, int nv, const 
       const int j = std::min(static_cast<int>(gv), std::max(0, nv - 2));
       const int i1 = std::min(i + 1, nu - 1), j1 = std::min(j + 1, nv - 1);
       const double fu = gu - i, fv = gv - j;
-      const double v = (1 - fv) * ((1 - fu) * value(i, j) + fu * value(i1, j)) +
-                       fv * ((1 - fu) * value(i, j1) + fu * value(i1, j1));
+      const double v =
+          (1 - fv) * ((1 - fu) * value(i, j) + fu * value(i1, j)) + fv * ((1 - fu) * value(i, j1) + fu * value(i1, j1));
       band[static_cast<std::size_t>(py) * w + px] = band_of(v);
     }
 

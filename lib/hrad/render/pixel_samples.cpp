@@ -10,8 +10,8 @@ namespace hrad {
 
 Vec2 pixel_sample(int x, int y, int pass, int passes, std::uint64_t seed) {
   // One stream per pixel for the permutation, one per sample for its jitter.
-  const std::uint64_t pixel = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) << 32) |
-                              static_cast<std::uint32_t>(x);
+  const std::uint64_t pixel =
+      (static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) << 32) | static_cast<std::uint32_t>(x);
   detail::Rng pixel_rng(seed ^ (pixel * 0x9e3779b97f4a7c15ULL));
   const std::uint64_t pixel_stream = pixel_rng.next();
   detail::Rng rng(pixel_stream ^ (static_cast<std::uint64_t>(pass) * 0xd1b54a32d192ed03ULL));

@@ -16,12 +16,12 @@ namespace hrad {
 
 struct RenderOptions {
   Camera camera;
-  double exposure = 1.0;            ///< see tone_map()
-  bool cull_back_faces = true;      ///< skip polygons whose front (CCW) side faces away from the camera
+  double exposure = 1.0;        ///< see tone_map()
+  bool cull_back_faces = true;  ///< skip polygons whose front (CCW) side faces away from the camera
   Rgb8 background{0, 0, 0};
   /// Jittered samples per pixel (pixel_samples.h), averaged by PixelAverager; 1 samples the centres.
   int samples_per_pixel = 1;
-  std::uint64_t seed = 1;           ///< of the jitter
+  std::uint64_t seed = 1;  ///< of the jitter
   /// Progress lines for large meshes (core/progress.h: at most one every 2 s; none for quick renders).
   ProgressSink progress;
 };
@@ -84,17 +84,17 @@ Image render_wireframe(const Solution& solution, const RenderOptions& options, c
 Rgb8 error_colormap(double t);
 
 struct FalseColourOptions {
-  double lo = 0.0;                 ///< value drawn blue
-  double hi = 1.0;                 ///< value drawn red
-  bool log_scale = false;          ///< colour by log10(value) between log10(lo) and log10(hi)
-  bool legend = true;              ///< add a colour bar with the lo and hi labels on the right
-  bool draw_edges = false;         ///< outline the elements
+  double lo = 0.0;          ///< value drawn blue
+  double hi = 1.0;          ///< value drawn red
+  bool log_scale = false;   ///< colour by log10(value) between log10(lo) and log10(hi)
+  bool legend = true;       ///< add a colour bar with the lo and hi labels on the right
+  bool draw_edges = false;  ///< outline the elements
 };
 
 /// Each element flat-coloured by error_colormap of its `face_value` (one per Solution face).
 /// With a legend the image is wider than the camera's by a strip of max(64, width / 6) pixels.
-Image render_false_colour(const Solution& solution, const std::vector<double>& face_value,
-                          const RenderOptions& options, const FalseColourOptions& colours);
+Image render_false_colour(const Solution& solution, const std::vector<double>& face_value, const RenderOptions& options,
+                          const FalseColourOptions& colours);
 
 /// Draws `text` (digits, '.', '-', '+', 'e', 'E', '%', 'l', 'x', ' ') with a 3x5 pixel font scaled by
 /// `scale`, top-left at (x, y), clipped to the image.

@@ -86,7 +86,8 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
     double area = 0.0;
     for (int p : face.patches) {
       const double a = scene.patches[static_cast<std::size_t>(p)].area;
-      if (static_cast<std::size_t>(p) < solution.patch_radiosity.size()) sum += a * solution.patch_radiosity[static_cast<std::size_t>(p)];
+      if (static_cast<std::size_t>(p) < solution.patch_radiosity.size())
+        sum += a * solution.patch_radiosity[static_cast<std::size_t>(p)];
       area += a;
     }
     const Material& m = scene.materials[static_cast<std::size_t>(face.material)];

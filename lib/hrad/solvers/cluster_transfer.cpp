@@ -83,10 +83,12 @@ bool ClusterTransfer::patches_face_away(NodeRef p, NodeRef q) const {
   auto all_behind = [&](NodeRef from, NodeRef to) {
     const Eigen::AlignedBox3d b = box(to);
     for (int k = 0, n = patch_count(from); k < n; ++k) {
-      const int patch = is_cluster(from) ? tree_->patches(cluster_index(from))[static_cast<std::size_t>(k)] : h_.node(from).patch;
+      const int patch =
+          is_cluster(from) ? tree_->patches(cluster_index(from))[static_cast<std::size_t>(k)] : h_.node(from).patch;
       const Patch& s = scene_.patches[static_cast<std::size_t>(patch)];
       for (int corner = 0; corner < 8; ++corner)
-        if ((b.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)) - s.vertices[0]).dot(s.normal) > 0.0) return false;
+        if ((b.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)) - s.vertices[0]).dot(s.normal) > 0.0)
+          return false;
     }
     return true;
   };
@@ -109,7 +111,8 @@ double ClusterTransfer::largest_share(NodeRef r, const Vec3& d, const std::vecto
   double cosine = 0.0;
   for (int k = 0, n = patch_count(r); k < n; ++k) {
     const int patch = is_cluster(r) ? tree_->patches(cluster_index(r))[static_cast<std::size_t>(k)] : h_.node(r).patch;
-    if (!listed(hidden, patch)) cosine = std::max(cosine, facing_cosine(scene_.patches[static_cast<std::size_t>(patch)].normal, d));
+    if (!listed(hidden, patch))
+      cosine = std::max(cosine, facing_cosine(scene_.patches[static_cast<std::size_t>(patch)].normal, d));
   }
   const double facing = projected_area(r, d, hidden);
   return facing > 0.0 ? cosine / facing : INFINITY;
@@ -127,7 +130,8 @@ int ClusterTransfer::patch_count(NodeRef r) const {
 }
 
 int ClusterTransfer::sample_patch(NodeRef r, int k, double u, double v, Vec3* point) const {
-  if (is_cluster(r)) return tree_->sample_patch(tree_->patches(cluster_index(r))[static_cast<std::size_t>(k)], u, v, point);
+  if (is_cluster(r))
+    return tree_->sample_patch(tree_->patches(cluster_index(r))[static_cast<std::size_t>(k)], u, v, point);
   return sample(r, 0.0, u, v, point);
 }
 

@@ -24,7 +24,7 @@ namespace hrad {
 
 struct NodeShape {
   Vec3 centre = Vec3::Zero();
-  double radius = 0.0;              ///< bounding sphere about centre
+  double radius = 0.0;  ///< bounding sphere about centre
   double area = 0.0;
   double max_projected_area = 0.0;  ///< bound of the projected area over all directions
 };
@@ -76,9 +76,12 @@ class ClusterTransfer {
 /// The surfaces below one node, for FormFactorEvaluator::sampled().
 class NodeSurfaces final : public SurfaceSampler {
  public:
-  NodeSurfaces(const ClusterTransfer& geometry, NodeRef node, double area) : geometry_(geometry), node_(node), area_(area) {}
+  NodeSurfaces(const ClusterTransfer& geometry, NodeRef node, double area)
+      : geometry_(geometry), node_(node), area_(area) {}
   double area() const override { return area_; }
-  int sample(double w, double u, double v, Vec3* point) const override { return geometry_.sample(node_, w, u, v, point); }
+  int sample(double w, double u, double v, Vec3* point) const override {
+    return geometry_.sample(node_, w, u, v, point);
+  }
   int patch_count() const override { return geometry_.patch_count(node_); }
   int sample_patch(int k, double u, double v, Vec3* point) const override {
     return geometry_.sample_patch(node_, k, u, v, point);

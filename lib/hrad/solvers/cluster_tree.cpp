@@ -26,7 +26,8 @@ ClusterTree::ClusterTree(const Scene& scene) : scene_(scene) {
   cumulative_area_.resize(static_cast<std::size_t>(n) + 1, 0.0);
   for (int i = 0; i < n; ++i)
     cumulative_area_[static_cast<std::size_t>(i) + 1] =
-        cumulative_area_[static_cast<std::size_t>(i)] + scene.patches[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])].area;
+        cumulative_area_[static_cast<std::size_t>(i)] +
+        scene.patches[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])].area;
 }
 
 NodeRef ClusterTree::build(int begin, int end, int parent, const std::vector<Vec3>& centroids) {

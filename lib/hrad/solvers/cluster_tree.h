@@ -46,9 +46,9 @@ struct Cluster {
   /// P_k^+ and P_k^-: the contents' areas times max(0, +-n_k) per axis k (oriented cluster
   /// transfer: exact projected areas for axis-aligned contents).
   Eigen::Array3d axis_plus = Eigen::Array3d::Zero(), axis_minus = Eigen::Array3d::Zero();
-  NodeRef children[2] = {kNoNode, kNoNode};   ///< clusters or patch roots
-  int parent = -1;                            ///< cluster index, -1 for the root
-  int begin = 0, end = 0;                     ///< its patches are patch_order()[begin, end)
+  NodeRef children[2] = {kNoNode, kNoNode};  ///< clusters or patch roots
+  int parent = -1;                           ///< cluster index, -1 for the root
+  int begin = 0, end = 0;                    ///< its patches are patch_order()[begin, end)
 };
 
 class ClusterTree {
@@ -82,7 +82,7 @@ class ClusterTree {
 
   const Scene& scene_;
   std::vector<Cluster> clusters_;
-  std::vector<int> order_;             ///< patches, grouped by cluster ranges
+  std::vector<int> order_;               ///< patches, grouped by cluster ranges
   std::vector<double> cumulative_area_;  ///< prefix sums of area along order_ (size + 1)
   std::vector<int> patch_parent_;
   std::vector<detail::PolygonSampler> samplers_;  ///< one per patch: sample() draws millions of points

@@ -28,8 +28,8 @@ SideFactors side_factors(const FormFactorEvaluator& ev, const ElementNode& r, co
   const Vec3& c = side.points.x[static_cast<std::size_t>(centre)];
   for (int i = 0; i < side.points.count; ++i) {
     const Vec3& x = side.points.x[static_cast<std::size_t>(i)];
-    side.factor[static_cast<std::size_t>(i)] = i == centre ? ev.point_factor(x, n, s.polygon())
-                                                           : ev.point_factor(x, n, Vec3(c - x), s.polygon());
+    side.factor[static_cast<std::size_t>(i)] =
+        i == centre ? ev.point_factor(x, n, s.polygon()) : ev.point_factor(x, n, Vec3(c - x), s.polygon());
   }
   return side;
 }
@@ -65,7 +65,8 @@ std::array<double, 9> source_weights(const SideFactors& source, double area) {
   }
   std::array<double, 9> w{};
   for (int m = 0; m < functions; ++m)
-    w[static_cast<std::size_t>(m)] = integral > 0.0 ? source.factor[static_cast<std::size_t>(m)] / integral : 1.0 / area;
+    w[static_cast<std::size_t>(m)] =
+        integral > 0.0 ? source.factor[static_cast<std::size_t>(m)] / integral : 1.0 / area;
   return w;
 }
 
@@ -94,23 +95,28 @@ void pair_fields(const FormFactorEvaluator& ev, const ElementNode& a, const Elem
 }
 
 FieldLinks::FieldLinks(std::vector<NodeId> receivers, std::vector<NodeId> sources)
-    : receivers_(std::move(receivers)), sources_(std::move(sources)), entries_(receivers_.size() * sources_.size(), FieldEntry{}) {}
+    : receivers_(std::move(receivers)),
+      sources_(std::move(sources)),
+      entries_(receivers_.size() * sources_.size(), FieldEntry{}) {}
 
 void FieldLinks::gather(NodeField& field) const {
   const std::size_t cols = sources_.size();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, receivers_.size(), 8), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      PointValues& h = field.irradiance[static_cast<std::size_t>(receivers_[i])];
-      const FieldEntry* row = entries_.data() + i * cols;
-      for (std::size_t j = 0; j < cols; ++j) {
-        const FieldEntry& e = row[j];
-        const PointValues& m = field.radiosity_moments[static_cast<std::size_t>(sources_[j])];
-        Rgb b = Rgb::Zero();
-        for (int k = 0; k < 9; ++k) b += e.weight[static_cast<std::size_t>(k)] * m[static_cast<std::size_t>(k)];
-        for (int k = 0; k < 9; ++k) h[static_cast<std::size_t>(k)] += e.factor[static_cast<std::size_t>(k)] * b;
-      }
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, receivers_.size(), 8),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        PointValues& h = field.irradiance[static_cast<std::size_t>(receivers_[i])];
+                        const FieldEntry* row = entries_.data() + i * cols;
+                        for (std::size_t j = 0; j < cols; ++j) {
+                          const FieldEntry& e = row[j];
+                          const PointValues& m = field.radiosity_moments[static_cast<std::size_t>(sources_[j])];
+                          Rgb b = Rgb::Zero();
+                          for (int k = 0; k < 9; ++k)
+                            b += e.weight[static_cast<std::size_t>(k)] * m[static_cast<std::size_t>(k)];
+                          for (int k = 0; k < 9; ++k)
+                            h[static_cast<std::size_t>(k)] += e.factor[static_cast<std::size_t>(k)] * b;
+                        }
+                      }
+                    });
 }
 
 }  // namespace hrad

@@ -64,6 +64,8 @@ class FieldLinks final : public LinkOperator {
 /// Rays per point of a partly visible pair for `visibility_samples` point pairs per pair (the
 /// constant elements' budget): a quarter of it, at least 4, so that a pair's 18 points cost a few
 /// times what one pair's fraction costs.
-inline int field_rays_per_point(int visibility_samples) { return visibility_samples / 4 > 4 ? visibility_samples / 4 : 4; }
+inline int field_rays_per_point(int visibility_samples) {
+  return visibility_samples / 4 > 4 ? visibility_samples / 4 : 4;
+}
 
 }  // namespace hrad

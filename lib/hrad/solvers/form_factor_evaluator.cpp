@@ -2,16 +2,16 @@
 
 #include <algorithm>
 #include <bit>
+#include <cassert>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <vector>
-#include <cassert>
-#include <numbers>
 
 #include "hrad/formfactor/clip_polygon.h"
-#include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/formfactor/point_to_polygon.h"
 #include "hrad/formfactor/point_to_polygon_limit.h"
+#include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/formfactor/receiver_gauss_factor.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/solvers/cluster_tree.h"
@@ -114,8 +114,9 @@ double FormFactorEvaluator::pair_visibility(std::span<const Vec3> receiver, int 
 }
 
 std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<const Vec3> receiver, int receiver_patch,
-                                                                  std::span<const Vec3> source, int source_patch,
-                                                                  const std::vector<int>* occluders, int samples) const {
+                                                                   std::span<const Vec3> source, int source_patch,
+                                                                   const std::vector<int>* occluders,
+                                                                   int samples) const {
   // Ray-traced form factors (Wallace, Elmquist & Haines 1989): the visible fraction weighted by the
   // point-to-point kernel over kx stratified receiver points, ky rays from each, so that the near
   // parts of a pair count as much as they contribute to F. The kernel is symmetric, so the
@@ -151,9 +152,9 @@ std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<con
 }
 
 KernelVisibility FormFactorEvaluator::visibility_from_point(const Vec3& x, const Vec3& nx, int patch_x,
-                                                           std::span<const Vec3> source, int source_patch,
-                                                           const std::vector<int>* occluders, int rays,
-                                                           std::uint64_t seed) const {
+                                                            std::span<const Vec3> source, int source_patch,
+                                                            const std::vector<int>* occluders, int rays,
+                                                            std::uint64_t seed) const {
   KernelVisibility k;
   if (rays <= 0) return k;
   detail::Rng rng(seed);
@@ -251,7 +252,8 @@ FormFactorEstimate FormFactorEvaluator::sampled(const SurfaceSampler& p, const S
   thread_local std::vector<int> order;
   order.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) order[static_cast<std::size_t>(i)] = i;
-  for (int i = n - 1; i > 0; --i) std::swap(order[static_cast<std::size_t>(i)], order[rng.below(static_cast<std::uint64_t>(i + 1))]);
+  for (int i = n - 1; i > 0; --i)
+    std::swap(order[static_cast<std::size_t>(i)], order[rng.below(static_cast<std::uint64_t>(i + 1))]);
   double sum = 0.0, sum2 = 0.0, weight = 0.0, visible_weight = 0.0;
   int visible = 0, counted = 0;
   for (int i = 0; i < n; ++i) {
@@ -271,8 +273,10 @@ FormFactorEstimate FormFactorEvaluator::sampled(const SurfaceSampler& p, const S
     if (k > 0.0) {
       ++counted;
       weight += k;
-      if (sight == Sight::kBlocked) kv = 0.0;
-      else ++visible, visible_weight += k;
+      if (sight == Sight::kBlocked)
+        kv = 0.0;
+      else
+        ++visible, visible_weight += k;
     }
     sum += kv;
     sum2 += kv * kv;
@@ -291,7 +295,7 @@ FormFactorEstimate FormFactorEvaluator::sampled(const SurfaceSampler& p, const S
 }
 
 std::vector<int> FormFactorEvaluator::hidden_surfaces(const SurfaceSampler& from, const Vec3& d,
-                                                     const SurfaceSampler& to, int rays, std::uint64_t seed) const {
+                                                      const SurfaceSampler& to, int rays, std::uint64_t seed) const {
   std::vector<int> hidden;
   detail::Rng rng(seed);
   for (int k = 0; k < from.patch_count(); ++k) {
@@ -341,7 +345,8 @@ Work FormFactorEvaluator::work() const {
   w.point_factor_evaluations = point_factors_.load(std::memory_order_relaxed);
   w.form_factor_evaluations = evaluations_.load(std::memory_order_relaxed);
   w.shaft_queries = shaft_queries_.load(std::memory_order_relaxed);
-  if (visibility_ != nullptr) w.segment_queries = visibility_->counters().segment_queries.load(std::memory_order_relaxed);
+  if (visibility_ != nullptr)
+    w.segment_queries = visibility_->counters().segment_queries.load(std::memory_order_relaxed);
   return w;
 }
 

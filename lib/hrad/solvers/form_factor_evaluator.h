@@ -27,18 +27,20 @@ inline constexpr double kSolverPairTolerance = 1e-9;
 /// How the unoccluded factor of a pair is computed.
 enum class FormFactorKernel {
   /// polygon_to_polygon(): the closed-form double contour integral (Schroeder & Hanrahan 1993),
-  /// exact to ~1e-13 and exactly reciprocal; costlier (~5 us for quads in general position, ~1 us for parallel ones: formfactor_benchmark).
+  /// exact to ~1e-13 and exactly reciprocal; costlier (~5 us for quads in general position, ~1 us for parallel ones:
+  /// formfactor_benchmark).
   kAnalytic,
   /// Fixed Gauss points on the receiver (3 x 3 on a quad, 12 on a triangle) and
   /// Lambert's exact contour formula from each point to the source (point_to_polygon(); Cohen &
   /// Wallace 1993, eq. 4.16): F(i -> j) = (1/A_i) sum_k w_k F(dA_k -> j). Each point's factors to a
   /// closed surface sum to exactly 1, so rows still sum to 1 in a closed room (closure) and the
-  /// closed forms hold to rounding; reciprocity holds to the quadrature error. Several times faster (solvers_benchmark BM_KernelPairs).
+  /// closed forms hold to rounding; reciprocity holds to the quadrature error. Several times faster (solvers_benchmark
+  /// BM_KernelPairs).
   kPointContour,
 };
 
 struct FormFactorEstimate {
-  double value = 0.0;       ///< F(receiver -> source) = unoccluded analytic factor * visibility fraction
+  double value = 0.0;  ///< F(receiver -> source) = unoccluded analytic factor * visibility fraction
   /// F(source -> receiver) with the same visibility fraction: reciprocal to rounding with kAnalytic;
   /// with kPointContour computed from Gauss points on the source (closure over reciprocity).
   double reverse = 0.0;
@@ -83,8 +85,8 @@ class FormFactorEvaluator {
  public:
   /// `visibility` may be null only when `effects.visibility` is false. `visibility_samples` is the
   /// number of point pairs sampled for a partially visible pair (> 0).
-  FormFactorEvaluator(const Scene& scene, const Effects& effects, const Visibility* visibility,
-                      int visibility_samples, FormFactorKernel kernel = FormFactorKernel::kPointContour);
+  FormFactorEvaluator(const Scene& scene, const Effects& effects, const Visibility* visibility, int visibility_samples,
+                      FormFactorKernel kernel = FormFactorKernel::kPointContour);
 
   /// Factor from `receiver` (a polygon lying on patch `receiver_patch`) to `source` (on
   /// `source_patch`). Polygons are counter-clockwise seen from their patches' fronts. Pairs on

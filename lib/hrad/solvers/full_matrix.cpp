@@ -7,10 +7,10 @@
 
 #include <unistd.h>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <Eigen/Dense>
 
 #include "hrad/core/error.h"
 #include "hrad/core/progress.h"
@@ -89,12 +89,13 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
   const double needed = estimate * estimate * (linear ? sizeof(FieldEntry) : 2.0 * sizeof(double));
   const double physical = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
   if (physical > 0.0 && needed > 0.8 * physical)
-    throw Error(fmt::format("full matrix: about {:.0f} elements need {} ({:.1f} GB) and "
-                            "this machine has {:.1f} GB: raise --max-area (now {:g}) or use --method hierarchical",
-                            estimate,
-                            linear ? fmt::format("{} bytes of field links per ordered pair", sizeof(FieldEntry))
-                                   : fmt::format("two dense {:.0f} x {:.0f} matrices", estimate, estimate),
-                            needed / 1e9, physical / 1e9, max_area));
+    throw Error(
+        fmt::format("full matrix: about {:.0f} elements need {} ({:.1f} GB) and "
+                    "this machine has {:.1f} GB: raise --max-area (now {:g}) or use --method hierarchical",
+                    estimate,
+                    linear ? fmt::format("{} bytes of field links per ordered pair", sizeof(FieldEntry))
+                           : fmt::format("two dense {:.0f} x {:.0f} matrices", estimate, estimate),
+                    needed / 1e9, physical / 1e9, max_area));
   {
     auto phase = ctx.phase("mesh");
     h.subdivide_uniform(max_area);
@@ -147,8 +148,8 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
         if (!b.allFinite()) {
           ctx.set_failed("LU solve gave non-finite radiosity (singular system: is some reflectance 1?)");
         } else {
-          ctx.set_direct(fmt::format("direct LU solve of {} x {} ({} channel{})", n, n, channels,
-                                     channels == 1 ? "" : "s"));
+          ctx.set_direct(
+              fmt::format("direct LU solve of {} x {} ({} channel{})", n, n, channels, channels == 1 ? "" : "s"));
         }
         break;
       }
@@ -158,7 +159,8 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
         const LinkOperator* ops[] = {&links};
         iterate(ctx, push_pull, ops, field, radiosity_bound(scene));
         for (int i = 0; i < n; ++i)
-          for (int c = 0; c < channels; ++c) b(i, c) = field.radiosity[static_cast<std::size_t>(leaves[static_cast<std::size_t>(i)])][c];
+          for (int c = 0; c < channels; ++c)
+            b(i, c) = field.radiosity[static_cast<std::size_t>(leaves[static_cast<std::size_t>(i)])][c];
         break;
       }
       case LinearSolver::kGaussSeidel: {

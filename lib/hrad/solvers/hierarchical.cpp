@@ -62,9 +62,12 @@ HierarchicalTolerances hierarchical_tolerances(const Scene& scene, const SolveOp
 
 bool uses_clustering(const Scene& scene, const SolveOptions& options) {
   switch (options.clustering) {
-    case Clustering::kOn: return scene.patches.size() > 1;
-    case Clustering::kOff: return false;
-    case Clustering::kAuto: return scene.patches.size() >= kAutoClusteringPatches;
+    case Clustering::kOn:
+      return scene.patches.size() > 1;
+    case Clustering::kOff:
+      return false;
+    case Clustering::kAuto:
+      return scene.patches.size() >= kAutoClusteringPatches;
   }
   return false;
 }
@@ -125,8 +128,9 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     RefineResult refined;
     {
       auto phase = ctx.phase("refine");
-      refined = refine(h, tree.get(), oracle, std::move(work), [&](std::string_view line) { ctx.progress(line); },
-                       options.progress_interval_seconds);
+      refined = refine(
+          h, tree.get(), oracle, std::move(work), [&](std::string_view line) { ctx.progress(line); },
+          options.progress_interval_seconds);
     }
     ++passes;
     candidates += refined.candidates;
@@ -144,7 +148,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
       auto phase = ctx.phase("links");
       ops = make_operators(options, h, tree.get(), geometry, ctx.evaluator(), links);
     }
-    ctx.progress(fmt::format("hierarchical: pass {}: {} elements, {} links", passes, h.size(), directed_link_count(links)));
+    ctx.progress(
+        fmt::format("hierarchical: pass {}: {} elements, {} links", passes, h.size(), directed_link_count(links)));
     // A re-refinement that changed nothing leaves the last solution consistent with its links.
     if (passes > 1 && !changed) break;
     const PushPull push_pull(scene, h, tree.get(), ctx.channels(), options.basis);

@@ -5,7 +5,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-
 namespace hrad {
 
 HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, const ClusterTree* tree,
@@ -13,7 +12,9 @@ HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, co
     : elements_(h.size()), scene_(geometry.scene()), tree_(tree), h_(h) {
   const std::size_t elements = h.size();
   const std::size_t n = elements + (tree != nullptr ? tree->size() : 0);
-  auto dense = [&](NodeRef r) { return is_cluster(r) ? elements + static_cast<std::size_t>(cluster_index(r)) : static_cast<std::size_t>(r); };
+  auto dense = [&](NodeRef r) {
+    return is_cluster(r) ? elements + static_cast<std::size_t>(cluster_index(r)) : static_cast<std::size_t>(r);
+  };
   auto with_cluster = [](const Link& l) { return is_cluster(l.p) || is_cluster(l.q); };
   offsets_.assign(n + 1, 0);
   cluster_offsets_.assign(n + 1, 0);
@@ -56,7 +57,8 @@ HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, co
     // The direction as stored (in floats) is the one the projected areas are taken towards, so that
     // the shares of a link sum to what it carries.
     const Vec3 exact = (geometry.shape(l.q).centre - geometry.shape(l.p).centre).normalized();  // p towards q
-    const std::array<float, 3> to_q = {static_cast<float>(exact.x()), static_cast<float>(exact.y()), static_cast<float>(exact.z())};
+    const std::array<float, 3> to_q = {static_cast<float>(exact.x()), static_cast<float>(exact.y()),
+                                       static_cast<float>(exact.z())};
     const std::array<float, 3> to_p = {-to_q[0], -to_q[1], -to_q[2]};
     const Vec3 d(to_q[0], to_q[1], to_q[2]);
     auto directed = [&](NodeRef receiver, NodeRef source, double f, const std::array<float, 3>& to_source,
@@ -94,7 +96,8 @@ HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, co
 
 std::uint64_t HsaLinks::bytes() const {
   return links_.capacity() * sizeof(DirectedLink) + cluster_links_.capacity() * sizeof(ClusterLink) +
-         (offsets_.capacity() + cluster_offsets_.capacity()) * sizeof(std::uint64_t) + carried_.capacity() * sizeof(Rgb) +
+         (offsets_.capacity() + cluster_offsets_.capacity()) * sizeof(std::uint64_t) +
+         carried_.capacity() * sizeof(Rgb) +
          (receiver_hidden_.capacity() + source_hidden_.capacity()) * sizeof(std::shared_ptr<const std::vector<int>>) +
          hidden_bytes_;
 }

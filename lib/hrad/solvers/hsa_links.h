@@ -22,7 +22,8 @@ class HsaLinks final : public LinkOperator {
   /// the source points' weights, Link::shape_p and source_q, as 9 floats each: 6e-8 relative, far
   /// below any tolerance), 56 per link with a cluster end (32-bit source, float factor, the unit
   /// direction to the source, the inverse of the source's projected area towards the receiver, and
-  /// the lists of patches on either end that see nothing of the other, usually none). `tree` may be null when no link has a cluster end.
+  /// the lists of patches on either end that see nothing of the other, usually none). `tree` may be null when no link
+  /// has a cluster end.
   HsaLinks(const std::vector<Link>& links, const ElementHierarchy& hierarchy, const ClusterTree* tree,
            const ClusterTransfer& geometry);
 
@@ -37,9 +38,9 @@ class HsaLinks final : public LinkOperator {
 
  private:
   struct DirectedLink {
-    std::int32_t source;           ///< dense node index
-    std::array<float, 9> factor;   ///< the factor at the receiver's points (link_operator.h PointValues)
-    std::array<float, 9> weight;   ///< the source's shape over the exchange: sum_i weight_i m_i is the radiosity sent
+    std::int32_t source;          ///< dense node index
+    std::array<float, 9> factor;  ///< the factor at the receiver's points (link_operator.h PointValues)
+    std::array<float, 9> weight;  ///< the source's shape over the exchange: sum_i weight_i m_i is the radiosity sent
   };
   /// A link with a cluster end. A cluster source shows the mean radiosity of its patches weighted
   /// by their projected areas towards the receiver, A_j max(0, n_j.u) (Sillion 1995's oriented
@@ -53,7 +54,7 @@ class HsaLinks final : public LinkOperator {
     /// receiver, whose patch i then gets factor max(0, n_i.u) times what the source shows.
     float factor;
     std::array<float, 3> to_source;  ///< unit direction u from the receiver's centre to the source's
-    float source_scale;  ///< 1 / the source's projected area towards the receiver (cluster sources)
+    float source_scale;              ///< 1 / the source's projected area towards the receiver (cluster sources)
   };
   static_assert(sizeof(DirectedLink) == 76);
   static_assert(sizeof(ClusterLink) == 24);

@@ -14,12 +14,14 @@ bool iterate(SolverContext& ctx, const PushPull& push_pull, std::span<const Link
     const LeafChange c = push_pull.push_pull(field);
     if (ctx.record_iteration(stopping_change(c.change, c.reflected))) break;
     double largest = 0.0;
-    for (std::size_t p = 0; p < ctx.scene().patches.size(); ++p) largest = std::max(largest, field.radiosity[p].maxCoeff());
+    for (std::size_t p = 0; p < ctx.scene().patches.size(); ++p)
+      largest = std::max(largest, field.radiosity[p].maxCoeff());
     if (largest > 2.0 * bound) {
-      ctx.set_failed(fmt::format("diverging: the mean radiosity of a patch ({}) passed twice the bound E_max / "
-                                 "(1 - rho_max) = {} after {} iterations: the factors sum above 1 on some elements "
-                                 "(try a smaller --feps or more --visibility-samples)",
-                                 largest, bound, ctx.summary().iterations));
+      ctx.set_failed(
+          fmt::format("diverging: the mean radiosity of a patch ({}) passed twice the bound E_max / "
+                      "(1 - rho_max) = {} after {} iterations: the factors sum above 1 on some elements "
+                      "(try a smaller --feps or more --visibility-samples)",
+                      largest, bound, ctx.summary().iterations));
       break;
     }
   }

@@ -11,9 +11,9 @@
 
 namespace hrad {
 
-/// Iterates from `field` (the caller times the phase) (radiosity set, e.g. by PushPull::make_field()). `bound` is the largest
-/// radiosity a contracting iteration can reach (radiosity_bound()); passing twice it is reported
-/// as a failure before anything overflows. Returns true when it converged.
+/// Iterates from `field` (the caller times the phase) (radiosity set, e.g. by PushPull::make_field()). `bound` is the
+/// largest radiosity a contracting iteration can reach (radiosity_bound()); passing twice it is reported as a failure
+/// before anything overflows. Returns true when it converged.
 bool iterate(SolverContext& ctx, const PushPull& push_pull, std::span<const LinkOperator* const> operators,
              NodeField& field, double bound);
 

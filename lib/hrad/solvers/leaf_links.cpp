@@ -77,20 +77,24 @@ LeafLinks::LeafLinks(const ElementHierarchy& h, const FormFactorEvaluator& evalu
     flat = !(exchange > 0.0) || !(weighted > 0.0);
     for (std::size_t k = 0; k < l.size(); ++k) {
       double& f = out.weight_[first + k];
-      if (!(exchange > 0.0)) f = 0.0;  // linked with a sampled visible fraction of 0
-      else if (weighted > 0.0) f *= exchange / weighted;
-      else f = f_rs;
+      if (!(exchange > 0.0))
+        f = 0.0;  // linked with a sampled visible fraction of 0
+      else if (weighted > 0.0)
+        f *= exchange / weighted;
+      else
+        f = f_rs;
     }
   };
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs.size(), 8), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const Link& pair = pairs[i];
-      const Pair& e = out.pairs_[i];
-      const double exchange = exchange_of(h, pair);
-      resolve(pair.p, pair.q, pair.f_pq, exchange, e.p_first, uniform[2 * i]);
-      resolve(pair.q, pair.p, pair.f_qp, exchange, e.q_first, uniform[2 * i + 1]);
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs.size(), 8),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const Link& pair = pairs[i];
+                        const Pair& e = out.pairs_[i];
+                        const double exchange = exchange_of(h, pair);
+                        resolve(pair.p, pair.q, pair.f_pq, exchange, e.p_first, uniform[2 * i]);
+                        resolve(pair.q, pair.p, pair.f_qp, exchange, e.q_first, uniform[2 * i + 1]);
+                      }
+                    });
   // Grouped by leaf for the gather (a stable counting sort keeps entry order within a leaf).
   out.leaf_offsets_.assign(h.size() + 1, 0);
   for (const NodeId l : out.leaf_) ++out.leaf_offsets_[static_cast<std::size_t>(l) + 1];
@@ -111,21 +115,22 @@ LeafLinks::LeafLinks(const ElementHierarchy& h, const FormFactorEvaluator& evalu
   }
   // The weights: each leaf's share A_leaf f / (A_p F(p -> q)) of its side's exchange, or its area
   // share where the side is uniform.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const Link& pair = pairs[i];
-      const Pair& e = out.pairs_[i];
-      const double exchange = exchange_of(h, pair);
-      for (std::size_t side = 0; side < 2; ++side) {
-        const auto [first, end] = e.side(side);
-        const double side_area = h.node(side == 0 ? pair.p : pair.q).area;
-        for (std::size_t k = first; k < end; ++k) {
-          const double area = h.node(out.leaf_[k]).area;
-          out.weight_[k] = uniform[2 * i + side] ? area / side_area : area * out.weight_[k] / exchange;
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, pairs.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const Link& pair = pairs[i];
+          const Pair& e = out.pairs_[i];
+          const double exchange = exchange_of(h, pair);
+          for (std::size_t side = 0; side < 2; ++side) {
+            const auto [first, end] = e.side(side);
+            const double side_area = h.node(side == 0 ? pair.p : pair.q).area;
+            for (std::size_t k = first; k < end; ++k) {
+              const double area = h.node(out.leaf_[k]).area;
+              out.weight_[k] = uniform[2 * i + side] ? area / side_area : area * out.weight_[k] / exchange;
+            }
+          }
         }
-      }
-    }
-  });
+      });
 }
 
 std::uint64_t LeafLinks::bytes() const {
@@ -137,7 +142,8 @@ std::uint64_t LeafLinks::bytes() const {
 void LeafLinks::gather(NodeField& field) const {
   auto mean = [&](std::size_t first, std::size_t n) {
     Rgb b = Rgb::Zero();
-    for (std::size_t k = first; k < first + n; ++k) b += weight_[k] * field.radiosity[static_cast<std::size_t>(leaf_[k])];
+    for (std::size_t k = first; k < first + n; ++k)
+      b += weight_[k] * field.radiosity[static_cast<std::size_t>(leaf_[k])];
     return b;
   };
   // Each side's mean once (index 2 k: pair k's q side, 2 k + 1: its p side), then each leaf adds
@@ -151,13 +157,15 @@ void LeafLinks::gather(NodeField& field) const {
                         means[2 * k + 1] = mean(e.p_first, e.p_count);
                       }
                     });
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nodes_, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t n = range.begin(); n != range.end(); ++n) {
-      Rgb sum = Rgb::Zero();
-      for (std::uint64_t j = leaf_offsets_[n]; j < leaf_offsets_[n + 1]; ++j) sum += factor_[j] * means[other_side_[j]];
-      add_constant(field.irradiance[n], sum);
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nodes_, 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t n = range.begin(); n != range.end(); ++n) {
+                        Rgb sum = Rgb::Zero();
+                        for (std::uint64_t j = leaf_offsets_[n]; j < leaf_offsets_[n + 1]; ++j)
+                          sum += factor_[j] * means[other_side_[j]];
+                        add_constant(field.irradiance[n], sum);
+                      }
+                    });
 }
 
 }  // namespace hrad

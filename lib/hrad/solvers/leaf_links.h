@@ -15,16 +15,15 @@
 // Here each link (p, q) keeps its level, its visible fraction and its total exchange
 // A_p F(p -> q) = A_q F(q -> p), but is resolved on both sides to the leaves below p and q with
 // the leaves' own unoccluded factors f(L -> q), f(M -> p) (receiver_gauss_factor(): Gauss points
-// on the leaf, Lambert's point-to-polygon formula at each), scaled so that sum_L A_L f(L -> q) = A_p F(p -> q) exactly. The link's leaf-to-leaf
-// block is approximated by the separable K(L, M) = f(L -> q) w_M, w_M = A_M f(M -> p) /
-// (A_q F(q -> p)): leaf L gathers f(L -> q) times the w-weighted mean of q's leaves. Its rows sum
-// to f(L -> q) (closure: a leaf's factors to sources tiling a closed room sum to 1 up to the
-// rule, since Lambert's formula is exact at each point) and its columns carry A_M f(M -> p)
-// (reciprocity per leaf, so power balances exactly). A side that is a leaf keeps the exact
-// analytic factor. Cost: one term per (leaf, link of the leaf or of an ancestor), computed once
-// per refinement in parallel, and two passes over them per iteration. A leaf far from the other
-// side against its size takes its factor at its centroid (receiver_factor_by_distance()); the
-// gather reads the factors grouped by leaf, in sequence (hierarchical_benchmark measures it).
+// on the leaf, Lambert's point-to-polygon formula at each), scaled so that sum_L A_L f(L -> q) = A_p F(p -> q) exactly.
+// The link's leaf-to-leaf block is approximated by the separable K(L, M) = f(L -> q) w_M, w_M = A_M f(M -> p) / (A_q
+// F(q -> p)): leaf L gathers f(L -> q) times the w-weighted mean of q's leaves. Its rows sum to f(L -> q) (closure: a
+// leaf's factors to sources tiling a closed room sum to 1 up to the rule, since Lambert's formula is exact at each
+// point) and its columns carry A_M f(M -> p) (reciprocity per leaf, so power balances exactly). A side that is a leaf
+// keeps the exact analytic factor. Cost: one term per (leaf, link of the leaf or of an ancestor), computed once per
+// refinement in parallel, and two passes over them per iteration. A leaf far from the other side against its size takes
+// its factor at its centroid (receiver_factor_by_distance()); the gather reads the factors grouped by leaf, in sequence
+// (hierarchical_benchmark measures it).
 #pragma once
 
 #include <cstddef>

@@ -21,7 +21,8 @@ LinearProjection linear_projection(const SimpsonPoints& s) {
   Eigen::Matrix4d mass = Eigen::Matrix4d::Identity();
   Eigen::Matrix<double, 4, 9> rhs = Eigen::Matrix<double, 4, 9>::Zero();
   for (int a = 0; a < n; ++a)
-    for (int k = 0; k < s.count; ++k) rhs(a, k) = s.weight[static_cast<std::size_t>(k)] * linear_function(vertex_count, a, k);
+    for (int k = 0; k < s.count; ++k)
+      rhs(a, k) = s.weight[static_cast<std::size_t>(k)] * linear_function(vertex_count, a, k);
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b) {
       double m = 0.0;
@@ -34,7 +35,8 @@ LinearProjection linear_projection(const SimpsonPoints& s) {
   if (!(area > 0.0)) {
     // A degenerate element: its corners take the plain mean of its points.
     for (int a = 0; a < n; ++a)
-      for (int k = 0; k < s.count; ++k) p.weight[static_cast<std::size_t>(a)][static_cast<std::size_t>(k)] = 1.0 / s.count;
+      for (int k = 0; k < s.count; ++k)
+        p.weight[static_cast<std::size_t>(a)][static_cast<std::size_t>(k)] = 1.0 / s.count;
     return p;
   }
   const Eigen::Matrix<double, 4, 9> w = mass.ldlt().solve(rhs);
@@ -49,12 +51,15 @@ PointValues project_linear(const LinearProjection& projection, int vertex_count,
   for (int a = 0; a < n; ++a) {
     corner[static_cast<std::size_t>(a)] = Rgb::Zero();
     for (int k = 0; k < points; ++k)
-      corner[static_cast<std::size_t>(a)] += projection.weight[static_cast<std::size_t>(a)][static_cast<std::size_t>(k)] * values[static_cast<std::size_t>(k)];
+      corner[static_cast<std::size_t>(a)] +=
+          projection.weight[static_cast<std::size_t>(a)][static_cast<std::size_t>(k)] *
+          values[static_cast<std::size_t>(k)];
   }
   PointValues out;
   out.fill(Rgb::Zero());
   for (int k = 0; k < points; ++k)
-    for (int a = 0; a < n; ++a) out[static_cast<std::size_t>(k)] += linear_function(vertex_count, a, k) * corner[static_cast<std::size_t>(a)];
+    for (int a = 0; a < n; ++a)
+      out[static_cast<std::size_t>(k)] += linear_function(vertex_count, a, k) * corner[static_cast<std::size_t>(a)];
   return out;
 }
 

@@ -2,8 +2,8 @@
 // map x(u, v), discontinuous between leaves, given by its values at the element's corners
 // (Heckbert & Winget 1991, "Finite element methods for global illumination": nodal linear bases;
 // Zatz 1993, "Galerkin radiosity: a higher order solution method for global illumination": the
-// radiosity as a projection onto a polynomial basis per element; Gortler, Schroeder, Cohen & Hanrahan 1993, "Wavelet radiosity": the same
-// projection on a hierarchy, with the two-scale relations carrying it between levels).
+// radiosity as a projection onto a polynomial basis per element; Gortler, Schroeder, Cohen & Hanrahan 1993, "Wavelet
+// radiosity": the same projection on a hierarchy, with the two-scale relations carrying it between levels).
 //
 // The design keeps one gather. Every link operator already delivers a leaf's irradiance H as a
 // field of values at its simpson_points() (biquadratic on a quad, quadratic on a triangle:

@@ -28,7 +28,7 @@ inline void add_constant(PointValues& v, const Rgb& c) {
 /// ids) first, then clusters (hierarchy size + cluster index).
 struct NodeField {
   std::size_t elements = 0;
-  std::vector<Rgb> radiosity;    ///< leaves: B; interior elements and clusters: their area mean
+  std::vector<Rgb> radiosity;  ///< leaves: B; interior elements and clusters: their area mean
   /// Per element: the moments of its radiosity against the basis of PointValues fields, m_i =
   /// integral over the element of phi_i B (phi_i: the biquadratic or quadratic Lagrange function of
   /// point i). A field's integral against B is then sum_i field_i m_i. Leaves: B times the integral

@@ -15,9 +15,12 @@ namespace {
 // Lagrange basis of the nodes 0, 1/2, 1 (node index 0, 1, 2).
 double lagrange(int node, double t) {
   switch (node) {
-    case 0: return 2.0 * (t - 0.5) * (t - 1.0);
-    case 1: return -4.0 * t * (t - 1.0);
-    default: return 2.0 * t * (t - 0.5);
+    case 0:
+      return 2.0 * (t - 0.5) * (t - 1.0);
+    case 1:
+      return -4.0 * t * (t - 1.0);
+    default:
+      return 2.0 * t * (t - 0.5);
   }
 }
 
@@ -40,7 +43,8 @@ Restriction quad_restriction() {
       double u = 0.0, v = 0.0;
       for (int m = 0; m < 4; ++m) u += w[m] * kQuadUv[corner[m]][0], v += w[m] * kQuadUv[corner[m]][1];
       for (int i = 0; i < 9; ++i)
-        r[k][j][i] = lagrange(static_cast<int>(2 * kQuadUv[i][0]), u) * lagrange(static_cast<int>(2 * kQuadUv[i][1]), v);
+        r[k][j][i] =
+            lagrange(static_cast<int>(2 * kQuadUv[i][0]), u) * lagrange(static_cast<int>(2 * kQuadUv[i][1]), v);
     }
   }
   return r;
@@ -75,33 +79,39 @@ const Restriction& restriction(int vertex_count) {
 
 PushPull::PushPull(const Scene& scene, const ElementHierarchy& hierarchy, const ClusterTree* tree, int channels,
                    Basis basis)
-    : scene_(scene), h_(hierarchy), tree_(tree), channels_(channels), basis_(basis), mean_weights_(hierarchy.size()),
+    : scene_(scene),
+      h_(hierarchy),
+      tree_(tree),
+      channels_(channels),
+      basis_(basis),
+      mean_weights_(hierarchy.size()),
       basis_integrals_(hierarchy.size()) {
   if (basis_ == Basis::kLinear) {
     point_weights_.resize(h_.size());
     projections_.resize(h_.size());
   }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, h_.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const SimpsonPoints s = simpson_points(h_.node(static_cast<NodeId>(i)).polygon());
-      double total = 0.0;
-      for (int k = 0; k < s.count; ++k) total += s.weight[k];
-      std::array<double, 9>& w = mean_weights_[i];
-      w.fill(0.0);
-      for (int k = 0; k < s.count; ++k) w[k] = total > 0.0 ? s.weight[k] / total : 0.0;
-      std::array<double, 9>& b = basis_integrals_[i];
-      b.fill(0.0);
-      if (s.count == 9) {
-        for (int k = 0; k < 9; ++k) b[k] = s.weight[k];
-      } else {
-        for (int k = 3; k < 6; ++k) b[k] = total / 3.0;
-      }
-      if (basis_ == Basis::kLinear && h_.node(static_cast<NodeId>(i)).is_leaf()) {
-        point_weights_[i] = s.weight;
-        projections_[i] = linear_projection(s);
-      }
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, h_.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const SimpsonPoints s = simpson_points(h_.node(static_cast<NodeId>(i)).polygon());
+                        double total = 0.0;
+                        for (int k = 0; k < s.count; ++k) total += s.weight[k];
+                        std::array<double, 9>& w = mean_weights_[i];
+                        w.fill(0.0);
+                        for (int k = 0; k < s.count; ++k) w[k] = total > 0.0 ? s.weight[k] / total : 0.0;
+                        std::array<double, 9>& b = basis_integrals_[i];
+                        b.fill(0.0);
+                        if (s.count == 9) {
+                          for (int k = 0; k < 9; ++k) b[k] = s.weight[k];
+                        } else {
+                          for (int k = 3; k < 6; ++k) b[k] = total / 3.0;
+                        }
+                        if (basis_ == Basis::kLinear && h_.node(static_cast<NodeId>(i)).is_leaf()) {
+                          point_weights_[i] = s.weight;
+                          projections_[i] = linear_projection(s);
+                        }
+                      }
+                    });
 }
 
 NodeField PushPull::make_field() const {
@@ -250,7 +260,8 @@ void PushPull::pull_clusters(NodeField& field) const {
     Rgb sum = Rgb::Zero();
     for (const NodeRef child : k.children) {
       if (is_cluster(child)) {
-        sum += tree_->cluster(cluster_index(child)).area * field.radiosity[base + static_cast<std::size_t>(cluster_index(child))];
+        sum += tree_->cluster(cluster_index(child)).area *
+               field.radiosity[base + static_cast<std::size_t>(cluster_index(child))];
       } else {
         sum += h_.node(child).area * field.radiosity[static_cast<std::size_t>(child)];
       }
@@ -262,7 +273,8 @@ void PushPull::pull_clusters(NodeField& field) const {
 void PushPull::store(const NodeField& field, ElementHierarchy& h, std::vector<Rgb>* cluster_radiosity) const {
   for (std::size_t i = 0; i < h.size(); ++i) h.node(static_cast<NodeId>(i)).radiosity = field.radiosity[i];
   if (cluster_radiosity != nullptr) {
-    cluster_radiosity->assign(field.radiosity.begin() + static_cast<std::ptrdiff_t>(field.elements), field.radiosity.end());
+    cluster_radiosity->assign(field.radiosity.begin() + static_cast<std::ptrdiff_t>(field.elements),
+                              field.radiosity.end());
   }
 }
 

@@ -26,9 +26,9 @@ Candidate child_of(const Candidate& parent, NodeRef p, NodeRef q) {
 namespace {
 
 // Refines `work` breadth-first until every pair is linked or dropped (see refine()).
-void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const RefinementOracle& oracle, std::vector<Candidate> work,
-                   const std::function<void(std::string_view)>& progress, double progress_interval,
-                   RefineResult& result) {
+void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const RefinementOracle& oracle,
+                   std::vector<Candidate> work, const std::function<void(std::string_view)>& progress,
+                   double progress_interval, RefineResult& result) {
   std::vector<Candidate> next;
   int level = 0;
   while (!work.empty()) {
@@ -47,9 +47,8 @@ void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const Refinemen
         case Decision::kDrop:
           break;
         case Decision::kLink:
-          result.links.push_back(
-              {c.p, c.q, c.f_pq, c.f_qp, c.partial, c.hidden_p, c.hidden_q, c.shadow_p, c.shadow_q, c.share_p, c.share_q, c.shaped, c.shape_p,
-               c.shape_q, c.source_p, c.source_q});
+          result.links.push_back({c.p, c.q, c.f_pq, c.f_qp, c.partial, c.hidden_p, c.hidden_q, c.shadow_p, c.shadow_q,
+                                  c.share_p, c.share_q, c.shaped, c.shape_p, c.shape_q, c.source_p, c.source_q});
           break;
         case Decision::kSelf: {
           const Cluster& k = tree->cluster(cluster_index(c.p));
@@ -63,7 +62,9 @@ void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const Refinemen
           ++result.splits;
           const bool split_p = c.decision == Decision::kSplitP;
           const NodeRef side = split_p ? c.p : c.q;
-          auto add = [&](NodeRef child) { next.push_back(split_p ? child_of(c, child, c.q) : child_of(c, c.p, child)); };
+          auto add = [&](NodeRef child) {
+            next.push_back(split_p ? child_of(c, child, c.q) : child_of(c, c.p, child));
+          };
           if (is_cluster(side)) {
             const Cluster& k = tree->cluster(cluster_index(side));
             add(k.children[0]);
@@ -90,8 +91,10 @@ void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const Refinemen
 std::vector<Candidate> shadowed(const ElementHierarchy& h, const RefinementOracle& oracle, std::vector<Link>& links) {
   std::vector<double> own(h.size(), 0.0), gathers(h.size(), 0.0);
   for (const Link& l : links) {
-    if (!is_cluster(l.p)) own[static_cast<std::size_t>(l.p)] += l.shadow_p, gathers[static_cast<std::size_t>(l.p)] += l.share_p;
-    if (!is_cluster(l.q)) own[static_cast<std::size_t>(l.q)] += l.shadow_q, gathers[static_cast<std::size_t>(l.q)] += l.share_q;
+    if (!is_cluster(l.p))
+      own[static_cast<std::size_t>(l.p)] += l.shadow_p, gathers[static_cast<std::size_t>(l.p)] += l.share_p;
+    if (!is_cluster(l.q))
+      own[static_cast<std::size_t>(l.q)] += l.shadow_q, gathers[static_cast<std::size_t>(l.q)] += l.share_q;
   }
   // Top-down sums (children have larger ids than their parent); a node is shadowed when some leaf
   // below it passes the budget and it can still split.
@@ -112,8 +115,10 @@ std::vector<Candidate> shadowed(const ElementHierarchy& h, const RefinementOracl
   std::vector<Link> kept;
   kept.reserve(links.size());
   for (const Link& l : links) {
-    const bool p = !is_cluster(l.p) && l.shadow_p > 0.0f && over[static_cast<std::size_t>(l.p)] && oracle.can_split(l.p);
-    const bool q = !is_cluster(l.q) && l.shadow_q > 0.0f && over[static_cast<std::size_t>(l.q)] && oracle.can_split(l.q);
+    const bool p =
+        !is_cluster(l.p) && l.shadow_p > 0.0f && over[static_cast<std::size_t>(l.p)] && oracle.can_split(l.p);
+    const bool q =
+        !is_cluster(l.q) && l.shadow_q > 0.0f && over[static_cast<std::size_t>(l.q)] && oracle.can_split(l.q);
     if (!p && !q) {
       kept.push_back(l);
       continue;
@@ -139,7 +144,8 @@ RefineResult refine(ElementHierarchy& h, const ClusterTree* tree, const Refineme
   for (int pass = 0; pass < kShadowPasses; ++pass) {
     std::vector<Candidate> again = shadowed(h, oracle, result.links);
     if (again.empty()) break;
-    if (progress) progress(fmt::format("refine: {} partly visible links under shadowed leaves refined again", again.size()));
+    if (progress)
+      progress(fmt::format("refine: {} partly visible links under shadowed leaves refined again", again.size()));
     refine_levels(h, tree, oracle, std::move(again), progress, progress_interval_seconds, result);
   }
   result.new_nodes = h.size() - nodes_before;

@@ -58,8 +58,8 @@ struct Side {
   }
 };
 
-void point_factors(const FormFactorEvaluator& ev, const ElementNode& r, const Vec3& n, const ElementNode& s, bool limits,
-                   Side* side) {
+void point_factors(const FormFactorEvaluator& ev, const ElementNode& r, const Vec3& n, const ElementNode& s,
+                   bool limits, Side* side) {
   side->points = simpson_points(r.polygon());
   side->unoccluded = 0.0;
   const int centre = side->points.count - 1;
@@ -68,7 +68,7 @@ void point_factors(const FormFactorEvaluator& ev, const ElementNode& r, const Ve
     // with `limits` their factor is the limit from inside the element, otherwise 0.
     const Vec3& x = side->points.x[i];
     side->factor[i] = i == centre || !limits ? ev.point_factor(x, n, s.polygon())
-                                  : ev.point_factor(x, n, Vec3(side->points.x[centre] - x), s.polygon());
+                                             : ev.point_factor(x, n, Vec3(side->points.x[centre] - x), s.polygon());
     side->visible[i] = 1.0;
     side->doubt[i] = 0.0;
     side->unoccluded += side->points.weight[i] * side->factor[i];
@@ -123,8 +123,11 @@ double linear_error(const Side& side, double mean, bool with_doubt = true, bool 
   for (int i = 0; i < corners; ++i) centre += g[i] / corners;
   double e = 0.0;
   for (int i = 0; i < side.points.count; ++i) {
-    const double field = i < corners ? g[i] : i < 2 * corners ? 0.5 * (g[i - corners] + g[(i - corners + 1) % corners]) : centre;
-    e = std::max(e, std::abs(side.factor[i] * side.visible[i] - field) + (with_doubt ? side.factor[i] * side.doubt[i] : 0.0));
+    const double field = i < corners       ? g[i]
+                         : i < 2 * corners ? 0.5 * (g[i - corners] + g[(i - corners + 1) % corners])
+                                           : centre;
+    e = std::max(
+        e, std::abs(side.factor[i] * side.visible[i] - field) + (with_doubt ? side.factor[i] * side.doubt[i] : 0.0));
   }
   return e;
 }
@@ -186,8 +189,8 @@ void source_weights_of(const Side& side, const std::array<float, 9>& shape, doub
 
 ErrorBoundOracle::ErrorBoundOracle(const ElementHierarchy& hierarchy, const ClusterTree* tree,
                                    const ClusterTransfer& geometry, const FormFactorEvaluator& evaluator,
-                                   const OracleTolerances& tolerances, std::vector<double> patch_weights,
-                                   int channels, const std::vector<Rgb>* cluster_radiosity)
+                                   const OracleTolerances& tolerances, std::vector<double> patch_weights, int channels,
+                                   const std::vector<Rgb>* cluster_radiosity)
     : h_(hierarchy),
       tree_(tree),
       geometry_(geometry),
@@ -225,7 +228,8 @@ double ErrorBoundOracle::weight(NodeRef r) const {
 }
 
 double ErrorBoundOracle::brightest(NodeRef r) const {
-  const Rgb& b = is_cluster(r) ? (*cluster_radiosity_)[static_cast<std::size_t>(cluster_index(r))] : h_.node(r).radiosity;
+  const Rgb& b =
+      is_cluster(r) ? (*cluster_radiosity_)[static_cast<std::size_t>(cluster_index(r))] : h_.node(r).radiosity;
   return channels_ == 1 ? b[0] : b.maxCoeff();
 }
 
@@ -298,7 +302,7 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   // edge; with 0 there, the spread keeps such pairs refining down to leaves, whose links are exact.
   point_factors(evaluator_, p, np, q, tol_.fields, &sp);
   point_factors(evaluator_, q, nq, p, tol_.fields, &sq);
-  if (!(sp.unoccluded > 0.0) && !(sq.unoccluded > 0.0)) return;  // no point of either side sees the other
+  if (!(sp.unoccluded > 0.0) && !(sq.unoccluded > 0.0)) return;   // no point of either side sees the other
   const double exchange = 0.5 * (sp.unoccluded + sq.unoccluded);  // A_p F(p -> q) = A_q F(q -> p)
   const double disagreement = 0.5 * std::abs(sp.unoccluded - sq.unoccluded);
   const bool splittable = can_split(c.p) || can_split(c.q);
@@ -351,8 +355,8 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
     // The link's visible fraction from point pairs stratified over both elements: unbiased, where
     // the points above sample where a shadow boundary lies but weigh the element's boundary as
     // their quadrature does, which over- or underestimates a shadow that hugs it.
-    fraction = evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, c.found_occluders.get(),
-                                          pair_samples_);
+    fraction =
+        evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, c.found_occluders.get(), pair_samples_);
     c.partial = fraction > 0.0 && fraction < 1.0;
   }
   // The link carries the factor's shape over each side (push_pull.h); its error is bounded by how
@@ -365,7 +369,8 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
     // What giving the whole receiver the link's visible fraction errs, in units of the tolerance:
     // a shadow errs the same way for every source its occluder hides, so these add up on the
     // leaves below (refine.h sums them and refines where the sum passes the tolerance).
-    const auto [s_p, s_q] = weighted(c.p, c.q, f_pq * shadow_variation(sp, fraction), f_qp * shadow_variation(sq, fraction));
+    const auto [s_p, s_q] =
+        weighted(c.p, c.q, f_pq * shadow_variation(sp, fraction), f_qp * shadow_variation(sq, fraction));
     c.shadow_p = static_cast<float>(s_p);
     c.shadow_q = static_cast<float>(s_q);
   }
@@ -423,9 +428,8 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
     const auto [b_p, b_q] = weighted(c.p, c.q, far.value * variation, far.reverse * variation);
     if (!far.facing_away && std::max(b_p, b_q) <= 1.0) {
       const NodeSurfaces surfaces_p(geometry_, c.p, sp.area), surfaces_q(geometry_, c.q, sq.area);
-      const std::uint64_t seed = detail::mix_seed((static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.p)) << 32) |
-                                                      static_cast<std::uint32_t>(c.q),
-                                                  7);
+      const std::uint64_t seed = detail::mix_seed(
+          (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.p)) << 32) | static_cast<std::uint32_t>(c.q), 7);
       const FormFactorEstimate e = evaluator_.sampled(surfaces_p, surfaces_q, evaluator_.visibility_samples(), seed);
       // The link shares its power among each side's patches by their projected areas towards the
       // other's centre (hsa_links.h), as the far-field factor does: where the sampled unoccluded
@@ -443,8 +447,10 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
         // the link than any point of it can see of the other side (TransferBound): patches grazing
         // the centre direction would get it all when no other faces; such pairs are split.
         const Vec3 d = (sq.centre - sp.centre) / r;
-        std::vector<int> hidden_p = evaluator_.hidden_surfaces(surfaces_p, d, surfaces_q, kFacingRays, detail::mix_seed(seed, 1));
-        std::vector<int> hidden_q = evaluator_.hidden_surfaces(surfaces_q, -d, surfaces_p, kFacingRays, detail::mix_seed(seed, 2));
+        std::vector<int> hidden_p =
+            evaluator_.hidden_surfaces(surfaces_p, d, surfaces_q, kFacingRays, detail::mix_seed(seed, 1));
+        std::vector<int> hidden_q =
+            evaluator_.hidden_surfaces(surfaces_q, -d, surfaces_p, kFacingRays, detail::mix_seed(seed, 2));
         const TransferBound most = geometry_.bound(sp, sq);
         const double exchange = e.value * sp.area;
         if (!(exchange * geometry_.largest_share(c.p, d, &hidden_p) > most.pq) &&
@@ -466,9 +472,12 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
     decide_elements(c);
     return;
   }
-  if (is_cluster(c.p) && (!is_cluster(c.q) || sp.radius >= sq.radius || !q_can)) c.decision = Decision::kSplitP;
-  else if (q_can) c.decision = Decision::kSplitQ;
-  else c.decision = p_can ? Decision::kSplitP : Decision::kLink;
+  if (is_cluster(c.p) && (!is_cluster(c.q) || sp.radius >= sq.radius || !q_can))
+    c.decision = Decision::kSplitP;
+  else if (q_can)
+    c.decision = Decision::kSplitQ;
+  else
+    c.decision = p_can ? Decision::kSplitP : Decision::kLink;
 }
 
 std::vector<double> source_weights(const Scene& scene, int channels) {

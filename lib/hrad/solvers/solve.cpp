@@ -55,8 +55,8 @@ void validate_options(const SolveOptions& o) {
   if (o.kernel != FormFactorKernel::kAnalytic && o.kernel != FormFactorKernel::kPointContour)
     throw Error(fmt::format("--kernel: unknown kernel {}", static_cast<int>(o.kernel)));
   if (o.visibility_samples < 1 || o.visibility_samples > kMaxVisibilitySamples)
-    throw Error(fmt::format("--visibility-samples must be in [1, {}], got {}", kMaxVisibilitySamples,
-                            o.visibility_samples));
+    throw Error(
+        fmt::format("--visibility-samples must be in [1, {}], got {}", kMaxVisibilitySamples, o.visibility_samples));
   if (o.clustering != Clustering::kAuto && o.clustering != Clustering::kOn && o.clustering != Clustering::kOff)
     throw Error(fmt::format("--clustering: unknown mode {}", static_cast<int>(o.clustering)));
   if (o.push != Push::kHsa && o.push != Push::kLeaf)
@@ -64,9 +64,10 @@ void validate_options(const SolveOptions& o) {
   if (o.basis != Basis::kConstant && o.basis != Basis::kLinear)
     throw Error(fmt::format("--basis: unknown basis {}", static_cast<int>(o.basis)));
   if (o.basis == Basis::kLinear && o.method == Method::kFull && o.linear_solver != LinearSolver::kJacobi)
-    throw Error(fmt::format("--basis linear with --method full iterates the corner values by Jacobi (--linear-solver "
-                            "jacobi), not {}",
-                            to_string(o.linear_solver)));
+    throw Error(
+        fmt::format("--basis linear with --method full iterates the corner values by Jacobi (--linear-solver "
+                    "jacobi), not {}",
+                    to_string(o.linear_solver)));
   if (o.basis == Basis::kLinear && o.method == Method::kHierarchical && o.push != Push::kHsa)
     throw Error("--basis linear needs --push hsa (the leaf operator gathers one value per leaf)");
   if (o.threads < 0) throw Error(fmt::format("--threads must be >= 0 (0 = all cores), got {}", o.threads));
@@ -92,36 +93,48 @@ SolveSummary solve(const Scene& scene, const SolveOptions& options, Solution* ou
 
 std::string_view to_string(Method method) {
   switch (method) {
-    case Method::kFull: return "full";
-    case Method::kSubstructure: return "substructure";
-    case Method::kHierarchical: return "hierarchical";
+    case Method::kFull:
+      return "full";
+    case Method::kSubstructure:
+      return "substructure";
+    case Method::kHierarchical:
+      return "hierarchical";
   }
   return "unknown";
 }
 
 std::string_view to_string(Termination termination) {
   switch (termination) {
-    case Termination::kConverged: return "converged";
-    case Termination::kMaxIterations: return "max_iterations";
-    case Termination::kDirect: return "direct";
-    case Termination::kFailed: return "failed";
+    case Termination::kConverged:
+      return "converged";
+    case Termination::kMaxIterations:
+      return "max_iterations";
+    case Termination::kDirect:
+      return "direct";
+    case Termination::kFailed:
+      return "failed";
   }
   return "unknown";
 }
 
 std::string_view to_string(LinearSolver solver) {
   switch (solver) {
-    case LinearSolver::kLu: return "lu";
-    case LinearSolver::kJacobi: return "jacobi";
-    case LinearSolver::kGaussSeidel: return "gauss_seidel";
+    case LinearSolver::kLu:
+      return "lu";
+    case LinearSolver::kJacobi:
+      return "jacobi";
+    case LinearSolver::kGaussSeidel:
+      return "gauss_seidel";
   }
   return "unknown";
 }
 
 std::string_view to_string(EffectsMode mode) {
   switch (mode) {
-    case EffectsMode::kAuto: return "auto";
-    case EffectsMode::kAll: return "all";
+    case EffectsMode::kAuto:
+      return "auto";
+    case EffectsMode::kAll:
+      return "all";
   }
   return "unknown";
 }
@@ -142,8 +155,10 @@ LinearSolver parse_linear_solver(std::string_view text) {
 
 std::string_view to_string(FormFactorKernel kernel) {
   switch (kernel) {
-    case FormFactorKernel::kAnalytic: return "analytic";
-    case FormFactorKernel::kPointContour: return "contour";
+    case FormFactorKernel::kAnalytic:
+      return "analytic";
+    case FormFactorKernel::kPointContour:
+      return "contour";
   }
   return "unknown";
 }
@@ -156,9 +171,12 @@ FormFactorKernel parse_kernel(std::string_view text) {
 
 std::string_view to_string(Clustering clustering) {
   switch (clustering) {
-    case Clustering::kAuto: return "auto";
-    case Clustering::kOn: return "on";
-    case Clustering::kOff: return "off";
+    case Clustering::kAuto:
+      return "auto";
+    case Clustering::kOn:
+      return "on";
+    case Clustering::kOff:
+      return "off";
   }
   return "unknown";
 }
@@ -172,8 +190,10 @@ Clustering parse_clustering(std::string_view text) {
 
 std::string_view to_string(Push push) {
   switch (push) {
-    case Push::kHsa: return "hsa";
-    case Push::kLeaf: return "leaf";
+    case Push::kHsa:
+      return "hsa";
+    case Push::kLeaf:
+      return "leaf";
   }
   return "unknown";
 }
@@ -186,8 +206,10 @@ Push parse_push(std::string_view text) {
 
 std::string_view to_string(Basis basis) {
   switch (basis) {
-    case Basis::kConstant: return "constant";
-    case Basis::kLinear: return "linear";
+    case Basis::kConstant:
+      return "constant";
+    case Basis::kLinear:
+      return "linear";
   }
   return "unknown";
 }

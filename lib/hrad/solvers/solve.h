@@ -124,11 +124,11 @@ enum class Termination {
 struct SolveSummary {
   Method method = Method::kHierarchical;
   Termination termination = Termination::kFailed;
-  std::string message;              ///< one line for people: how it ended and why
+  std::string message;  ///< one line for people: how it ended and why
   int iterations = 0;
-  std::size_t patches = 0;          ///< input patches (Scene::patches)
-  std::size_t elements = 0;         ///< leaves of the element hierarchy
-  std::size_t links = 0;            ///< interactions: n^2 (full), n*N (substructuring), links (hierarchical)
+  std::size_t patches = 0;   ///< input patches (Scene::patches)
+  std::size_t elements = 0;  ///< leaves of the element hierarchy
+  std::size_t links = 0;     ///< interactions: n^2 (full), n*N (substructuring), links (hierarchical)
   std::uint64_t form_factor_evaluations = 0;
   std::uint64_t visibility_queries = 0;
   /// What the solve did, counted where it was done (work.h).
@@ -140,7 +140,7 @@ struct SolveSummary {
   /// "refine", "output", ...) in the order they ran, and the whole solve.
   std::vector<std::pair<std::string, double>> seconds;
   double total_seconds = 0.0;
-  Effects effects;                  ///< what was simulated and why
+  Effects effects;  ///< what was simulated and why
   /// Largest relative change per iteration (see SolveOptions::tolerance), for convergence plots.
   std::vector<double> change_per_iteration;
   std::size_t peak_memory_bytes = 0;  ///< the process's peak resident set (0 if unknown)

@@ -65,7 +65,7 @@ std::string SolverContext::allocating_in(const std::string& phase) const {
   if (phase == "links") return "the link operators";
   if (phase == "solve")
     return method() == Method::kFull && options_.linear_solver == LinearSolver::kLu ? "the LU factors of the system"
-                                                                                     : "the radiosity arrays";
+                                                                                    : "the radiosity arrays";
   if (phase == "output") return "the solution's leaf mesh";
   return fmt::format("the {} phase", phase);
 }
@@ -92,16 +92,17 @@ bool SolverContext::record_iteration(double change) {
   estimated_error_ = change == 0.0 ? 0.0 : (rate < 1.0 ? change * rate / (1.0 - rate) : INFINITY);
   if (estimated_error_ < options_.tolerance) {
     summary_.termination = Termination::kConverged;
-    summary_.message =
-        fmt::format("converged in {} iterations (estimated relative error {:.3g} < tolerance {:.3g}; last change {:.3g}, "
-                    "contraction {:.3g} per iteration)",
-                    summary_.iterations, estimated_error_, options_.tolerance, change, std::isfinite(rate) ? rate : 0.0);
+    summary_.message = fmt::format(
+        "converged in {} iterations (estimated relative error {:.3g} < tolerance {:.3g}; last change {:.3g}, "
+        "contraction {:.3g} per iteration)",
+        summary_.iterations, estimated_error_, options_.tolerance, change, std::isfinite(rate) ? rate : 0.0);
     return true;
   }
   if (summary_.iterations >= options_.max_iterations) {
     summary_.termination = Termination::kMaxIterations;
     summary_.message = fmt::format(
-        "not converged: {} iterations reached with estimated relative error {:.3g} >= tolerance {:.3g} (last change {:.3g})",
+        "not converged: {} iterations reached with estimated relative error {:.3g} >= tolerance {:.3g} (last change "
+        "{:.3g})",
         summary_.iterations, estimated_error_, options_.tolerance, change);
     return true;
   }
@@ -127,13 +128,14 @@ void SolverContext::report_iteration(double change) {
   const int back = std::min(kRateWindow, k - 1);
   const std::optional<double> left =
       iterations_left(changes[static_cast<std::size_t>(k - 1 - back)], change, back, options_.tolerance);
-  std::string line = fmt::format("iteration {}: relative change {:.3g} (tolerance {:.3g})", k, change,
-                                 options_.tolerance);
+  std::string line =
+      fmt::format("iteration {}: relative change {:.3g} (tolerance {:.3g})", k, change, options_.tolerance);
   if (left) {
     const double seconds_per_iteration = (now - first_iteration_at_) / (k - 1);
     const double capped = std::min(*left, static_cast<double>(options_.max_iterations - k));
-    line += fmt::format(", about {:.0f} more iterations ({}){}", capped, format_duration(capped * seconds_per_iteration),
-                        capped < *left ? " until --max-iterations" : "");
+    line +=
+        fmt::format(", about {:.0f} more iterations ({}){}", capped, format_duration(capped * seconds_per_iteration),
+                    capped < *left ? " until --max-iterations" : "");
   }
   progress(line);
 }
@@ -179,7 +181,8 @@ SolveSummary SolverContext::finish(const ElementHierarchy& hierarchy, std::size_
         field.corners = e.vertex_count;
         for (int k = 0; k < e.vertex_count; ++k) {
           field.x[static_cast<std::size_t>(k)] = e.polygon()[static_cast<std::size_t>(k)];
-          field.radiosity[static_cast<std::size_t>(k)] = point_radiosity[static_cast<std::size_t>(leaves[f])][static_cast<std::size_t>(k)];
+          field.radiosity[static_cast<std::size_t>(k)] =
+              point_radiosity[static_cast<std::size_t>(leaves[f])][static_cast<std::size_t>(k)];
         }
       }
     }

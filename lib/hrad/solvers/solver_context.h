@@ -123,7 +123,6 @@ class SolverContext {
   std::unique_ptr<ThreadLimit> thread_limit_;
 };
 
-
 /// The stopping measure of one iteration (SolveOptions::tolerance): `largest_change` of any element's
 /// radiosity divided by `largest_reflected`, the largest |B - E|; the change itself when nothing is
 /// reflected yet; NaN when either is not finite (record_iteration then reports a failure).

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <vector>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <Eigen/Dense>
 
 #include "hrad/core/progress.h"
 #include "hrad/solvers/dense_links.h"

@@ -21,9 +21,12 @@ double uniform_elements(const Scene& scene, double max_area) {
 
 std::string_view smaller_work(Method method) {
   switch (method) {
-    case Method::kFull: return "raise --max-area";
-    case Method::kSubstructure: return "raise --max-area (or --patch-area)";
-    case Method::kHierarchical: return "raise --aeps";
+    case Method::kFull:
+      return "raise --max-area";
+    case Method::kSubstructure:
+      return "raise --max-area (or --patch-area)";
+    case Method::kHierarchical:
+      return "raise --aeps";
   }
   return "make the scene smaller";
 }
@@ -85,9 +88,10 @@ void check_work(const WorkEstimate& w, std::string_view method, double available
     throw Error(fmt::format("{}: about {:.3g} elements need {:.3g} form factors (more than {:.0e}: days of work): {}",
                             method, w.elements, w.form_factors, kMaxFormFactors, change));
   if (!(w.segment_queries <= kMaxSegmentQueries))
-    throw Error(fmt::format("{}: about {:.3g} visibility queries (more than {:.0e}: days of work): lower "
-                            "--visibility-samples or {}",
-                            method, w.segment_queries, kMaxSegmentQueries, change));
+    throw Error(
+        fmt::format("{}: about {:.3g} visibility queries (more than {:.0e}: days of work): lower "
+                    "--visibility-samples or {}",
+                    method, w.segment_queries, kMaxSegmentQueries, change));
 }
 
 }  // namespace hrad

@@ -55,7 +55,8 @@ std::vector<SurfaceCondition> read_boundary_csv(const std::string& path, int sur
     if (ec2 != std::errc() || e2 != v.data() + v.size() || !std::isfinite(value))
       throw_at(path, line, fmt::format("{} '{}' is not a finite number", t ? "temperature" : "heat_flux", v));
     if (t && value < 0.0) throw_at(path, line, fmt::format("temperature {} K is negative", value));
-    out[static_cast<std::size_t>(s)] = {t ? SurfaceCondition::Kind::kTemperature : SurfaceCondition::Kind::kHeatFlux, value};
+    out[static_cast<std::size_t>(s)] = {t ? SurfaceCondition::Kind::kTemperature : SurfaceCondition::Kind::kHeatFlux,
+                                        value};
   }
   if (!header) throw_at(path, 0, "empty: no header surface,temperature,heat_flux");
   for (int s = 0; s < surfaces; ++s)

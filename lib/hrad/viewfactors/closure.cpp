@@ -15,9 +15,11 @@ ClosureReport enforce_closure(ViewFactorMatrix& m) {
   const int n = m.n;
   Eigen::VectorXd sums = Eigen::VectorXd::Zero(n);
   for (int u = 0; u < n; ++u) {
-    for (std::int64_t k = m.row_begin[static_cast<std::size_t>(u)]; k < m.row_begin[static_cast<std::size_t>(u) + 1]; ++k)
+    for (std::int64_t k = m.row_begin[static_cast<std::size_t>(u)]; k < m.row_begin[static_cast<std::size_t>(u) + 1];
+         ++k)
       sums[u] += m.exchange[static_cast<std::size_t>(k)];
-    report.max_row_error_before = std::max(report.max_row_error_before, std::abs(1.0 - sums[u] / m.area[static_cast<std::size_t>(u)]));
+    report.max_row_error_before =
+        std::max(report.max_row_error_before, std::abs(1.0 - sums[u] / m.area[static_cast<std::size_t>(u)]));
   }
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(m.nonzeros() + static_cast<std::size_t>(n));
@@ -30,7 +32,8 @@ ClosureReport enforce_closure(ViewFactorMatrix& m) {
       continue;
     }
     triplets.emplace_back(u, u, sums[u]);
-    for (std::int64_t k = m.row_begin[static_cast<std::size_t>(u)]; k < m.row_begin[static_cast<std::size_t>(u) + 1]; ++k)
+    for (std::int64_t k = m.row_begin[static_cast<std::size_t>(u)]; k < m.row_begin[static_cast<std::size_t>(u) + 1];
+         ++k)
       triplets.emplace_back(u, m.column[static_cast<std::size_t>(k)], m.exchange[static_cast<std::size_t>(k)]);
     rhs[u] = m.area[static_cast<std::size_t>(u)] - sums[u];
   }
@@ -41,7 +44,8 @@ ClosureReport enforce_closure(ViewFactorMatrix& m) {
   const Eigen::VectorXd l = solver.solve(rhs);
   double moved = 0.0, total = 0.0;
   for (int u = 0; u < n; ++u)
-    for (std::int64_t k = m.row_begin[static_cast<std::size_t>(u)]; k < m.row_begin[static_cast<std::size_t>(u) + 1]; ++k) {
+    for (std::int64_t k = m.row_begin[static_cast<std::size_t>(u)]; k < m.row_begin[static_cast<std::size_t>(u) + 1];
+         ++k) {
       const int v = m.column[static_cast<std::size_t>(k)];
       double& e = m.exchange[static_cast<std::size_t>(k)];
       // l_u + l_v in a fixed order so both rows get the same bits.
@@ -53,7 +57,8 @@ ClosureReport enforce_closure(ViewFactorMatrix& m) {
       }
       moved += std::abs(adjusted - e);
       total += e;
-      report.max_factor_change = std::max(report.max_factor_change, std::abs(adjusted - e) / m.area[static_cast<std::size_t>(u)]);
+      report.max_factor_change =
+          std::max(report.max_factor_change, std::abs(adjusted - e) / m.area[static_cast<std::size_t>(u)]);
       e = adjusted;
     }
   report.relative_change = total > 0.0 ? moved / total : 0.0;

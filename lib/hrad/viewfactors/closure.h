@@ -20,10 +20,10 @@ namespace hrad {
 struct ClosureReport {
   double max_row_error_before = 0.0;  ///< max_u |1 - sum_v F_uv| before
   double max_row_error_after = 0.0;
-  double max_factor_change = 0.0;     ///< max |F'_uv - F_uv|
-  double relative_change = 0.0;       ///< sum |E' - E| / sum E
-  int rows_not_closable = 0;          ///< rows with no exchange at all
-  int clamped = 0;                    ///< entries that would have become negative
+  double max_factor_change = 0.0;  ///< max |F'_uv - F_uv|
+  double relative_change = 0.0;    ///< sum |E' - E| / sum E
+  int rows_not_closable = 0;       ///< rows with no exchange at all
+  int clamped = 0;                 ///< entries that would have become negative
 };
 
 /// Adjusts `m` in place (exchange stays symmetric and bit-identical in both rows).

@@ -30,8 +30,10 @@ void write_matrix(std::ostream& out, const ViewFactorMatrix& m, const SurfaceUni
     const std::int64_t end = m.row_begin[static_cast<std::size_t>(u) + 1];
     for (int v = 0; v < m.n; ++v) {
       if (v > 0) line += separator;
-      if (k < end && m.column[static_cast<std::size_t>(k)] == v) fmt::format_to(std::back_inserter(line), "{:.17g}", m.factor(u, k++));
-      else line += '0';
+      if (k < end && m.column[static_cast<std::size_t>(k)] == v)
+        fmt::format_to(std::back_inserter(line), "{:.17g}", m.factor(u, k++));
+      else
+        line += '0';
     }
     line += '\n';
     out << line;
@@ -51,7 +53,8 @@ void write_matrix(std::ostream& out, const ViewFactorMatrix& m, const SurfaceUni
         out << "i,j,F\n";
       }
       for (int u = 0; u < m.n; ++u)
-        for (std::int64_t k = m.row_begin[static_cast<std::size_t>(u)]; k < m.row_begin[static_cast<std::size_t>(u) + 1]; ++k) {
+        for (std::int64_t k = m.row_begin[static_cast<std::size_t>(u)];
+             k < m.row_begin[static_cast<std::size_t>(u) + 1]; ++k) {
           const int v = m.column[static_cast<std::size_t>(k)];
           out << (mm ? fmt::format("{} {} {:.17g}\n", u + 1, v + 1, m.factor(u, k))
                      : fmt::format("{},{},{:.17g}\n", u, v, m.factor(u, k)));
@@ -63,12 +66,14 @@ void write_matrix(std::ostream& out, const ViewFactorMatrix& m, const SurfaceUni
       // readers skip that line and read the numbers after it.
       out << fmt::format("View3D 3.2 0 0 1 {}\n", m.n);
       line.clear();
-      for (int u = 0; u < m.n; ++u) fmt::format_to(std::back_inserter(line), "{}{:.17g}", u ? " " : "", m.area[static_cast<std::size_t>(u)]);
+      for (int u = 0; u < m.n; ++u)
+        fmt::format_to(std::back_inserter(line), "{}{:.17g}", u ? " " : "", m.area[static_cast<std::size_t>(u)]);
       out << line << '\n';
       for (int u = 0; u < m.n; ++u) dense_row(u, " ");
       line.clear();
       for (int u = 0; u < m.n; ++u)
-        fmt::format_to(std::back_inserter(line), "{}{:.17g}", u ? " " : "", units.emissivity[static_cast<std::size_t>(u)]);
+        fmt::format_to(std::back_inserter(line), "{}{:.17g}", u ? " " : "",
+                       units.emissivity[static_cast<std::size_t>(u)]);
       out << line << '\n';
       break;
     }

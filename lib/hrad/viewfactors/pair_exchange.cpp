@@ -7,8 +7,8 @@
 #include "hrad/formfactor/point_to_polygon.h"
 #include "hrad/formfactor/polygon_quadrature.h"
 #include "hrad/formfactor/polygon_to_polygon.h"
-#include "hrad/visibility/sampling.h"
 #include "hrad/viewfactors/point_factors.h"
+#include "hrad/visibility/sampling.h"
 #include "hrad/visibility/visible_region.h"
 
 namespace hrad {
@@ -89,9 +89,9 @@ PairExchange classify(const FormFactorEvaluator& ev, int p, int q, const PairExc
   // contour sums and takes lower Gauss orders for far pairs): a fully visible pair's factor is the
   // answer, to 1e-10 relative; a partly visible pair's is multiplied by a fraction known to ~1e-3
   // at best, so 1e-8 is ample.
-  const PairFormFactor f = polygon_to_polygon(a.vertices, b.vertices,
-                                              r.pair_class == PairClass::kPartial ? options.partial_closed_form_tolerance
-                                                                                  : options.closed_form_tolerance);
+  const PairFormFactor f = polygon_to_polygon(
+      a.vertices, b.vertices,
+      r.pair_class == PairClass::kPartial ? options.partial_closed_form_tolerance : options.closed_form_tolerance);
   r.evaluated = true;
   // Both directions come from one evaluation; their mean is symmetric in p and q.
   r.unoccluded = 0.5 * (a.area * f.from_to + b.area * f.to_from);

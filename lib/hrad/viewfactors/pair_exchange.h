@@ -46,9 +46,9 @@ struct PairExchange {
   double unoccluded = 0.0;  ///< the same without obstruction (0 when facing away or coplanar)
   double error = 0.0;       ///< standard error of `exchange` from sampling (0 when exact)
   PairClass pair_class = PairClass::kFacingAway;
-  int rays = 0;             ///< segments cast
-  int regions = 0;          ///< exact visible regions computed
-  bool evaluated = false;   ///< the closed form was called
+  int rays = 0;            ///< segments cast
+  int regions = 0;         ///< exact visible regions computed
+  bool evaluated = false;  ///< the closed form was called
 };
 
 /// Patches `p` and `q` of the evaluator's scene. The evaluator must be built with the scene's

@@ -20,10 +20,12 @@ namespace hrad {
 
 struct PointFactors {
   int points = 0, units = 0;
-  std::vector<double> factor;  ///< points x units, row-major: F(point i -> unit u)
+  std::vector<double> factor;                          ///< points x units, row-major: F(point i -> unit u)
   std::uint64_t visible = 0, hidden = 0, partial = 0;  ///< point-patch pairs by class (front-facing ones)
 
-  double at(int i, int u) const { return factor[static_cast<std::size_t>(i) * static_cast<std::size_t>(units) + static_cast<std::size_t>(u)]; }
+  double at(int i, int u) const {
+    return factor[static_cast<std::size_t>(i) * static_cast<std::size_t>(units) + static_cast<std::size_t>(u)];
+  }
 };
 
 PointFactors point_view_factors(const Scene& scene, const SurfaceUnits& units, std::span<const ProbePoint> points,

@@ -43,7 +43,8 @@ RadiantExchange solve_radiant_exchange(const ViewFactorMatrix& f, const std::vec
     if (fixed_t && !(c.value >= 0.0)) throw Error(fmt::format("surface {}: temperature {} K is negative", i, c.value));
     const double keep = fixed_t ? 1.0 - eps : 1.0;  // the share of H that J carries on
     t.emplace_back(i, i, 1.0);
-    for (std::int64_t k = f.row_begin[static_cast<std::size_t>(i)]; k < f.row_begin[static_cast<std::size_t>(i) + 1]; ++k)
+    for (std::int64_t k = f.row_begin[static_cast<std::size_t>(i)]; k < f.row_begin[static_cast<std::size_t>(i) + 1];
+         ++k)
       t.emplace_back(i, f.column[static_cast<std::size_t>(k)], -keep * f.factor(i, k));
     rhs[i] = fixed_t ? eps * black(c.value) + keep * to_sky * sky : c.value + to_sky * sky;
   }
@@ -51,7 +52,8 @@ RadiantExchange solve_radiant_exchange(const ViewFactorMatrix& f, const std::vec
   a.setFromTriplets(t.begin(), t.end());
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
   lu.compute(a);
-  if (lu.info() != Eigen::Success) throw Error("radiant exchange: the system is singular (is every surface at a fixed flux?)");
+  if (lu.info() != Eigen::Success)
+    throw Error("radiant exchange: the system is singular (is every surface at a fixed flux?)");
   const Eigen::VectorXd j = lu.solve(rhs);
   RadiantExchange r;
   r.radiosity.assign(j.data(), j.data() + n);
@@ -61,7 +63,8 @@ RadiantExchange solve_radiant_exchange(const ViewFactorMatrix& f, const std::vec
   for (int i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
     double h = std::max(0.0, 1.0 - f.row_sum(i)) * sky;
-    for (std::int64_t k = f.row_begin[ui]; k < f.row_begin[ui + 1]; ++k) h += f.factor(i, k) * j[f.column[static_cast<std::size_t>(k)]];
+    for (std::int64_t k = f.row_begin[ui]; k < f.row_begin[ui + 1]; ++k)
+      h += f.factor(i, k) * j[f.column[static_cast<std::size_t>(k)]];
     r.irradiation[ui] = h;
     if (conditions[ui].kind == SurfaceCondition::Kind::kTemperature) {
       r.temperature[ui] = conditions[ui].value;
@@ -69,7 +72,8 @@ RadiantExchange solve_radiant_exchange(const ViewFactorMatrix& f, const std::vec
     } else {
       r.heat_flux[ui] = conditions[ui].value;
       const double e4 = h + conditions[ui].value / emissivity[ui];
-      if (e4 < 0.0) throw Error(fmt::format("surface {}: no temperature gives net flux {} W/m^2", i, conditions[ui].value));
+      if (e4 < 0.0)
+        throw Error(fmt::format("surface {}: no temperature gives net flux {} W/m^2", i, conditions[ui].value));
       r.temperature[ui] = std::pow(e4 / kStefanBoltzmann, 0.25);
     }
     r.sky_heat += f.area[ui] * r.heat_flux[ui];
@@ -82,7 +86,8 @@ std::vector<double> gebhart_factors(const ViewFactorMatrix& f, const std::vector
   const int n = f.n;
   Eigen::MatrixXd fm = Eigen::MatrixXd::Zero(n, n + 1);
   for (int i = 0; i < n; ++i) {
-    for (std::int64_t k = f.row_begin[static_cast<std::size_t>(i)]; k < f.row_begin[static_cast<std::size_t>(i) + 1]; ++k)
+    for (std::int64_t k = f.row_begin[static_cast<std::size_t>(i)]; k < f.row_begin[static_cast<std::size_t>(i) + 1];
+         ++k)
       fm(i, f.column[static_cast<std::size_t>(k)]) = f.factor(i, k);
     fm(i, n) = std::max(0.0, 1.0 - f.row_sum(i));
   }
@@ -93,7 +98,8 @@ std::vector<double> gebhart_factors(const ViewFactorMatrix& f, const std::vector
   const Eigen::MatrixXd b = a.partialPivLu().solve(rhs);
   std::vector<double> out(static_cast<std::size_t>(n) * static_cast<std::size_t>(n + 1));
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j <= n; ++j) out[static_cast<std::size_t>(i) * static_cast<std::size_t>(n + 1) + static_cast<std::size_t>(j)] = b(i, j);
+    for (int j = 0; j <= n; ++j)
+      out[static_cast<std::size_t>(i) * static_cast<std::size_t>(n + 1) + static_cast<std::size_t>(j)] = b(i, j);
   return out;
 }
 
@@ -107,7 +113,8 @@ std::vector<double> net_heat_by_exchange_areas(const ViewFactorMatrix& f, const 
     const double s = f.area[ui] * emissivity[ui];  // S_iS_j = A_i eps_i B_ij
     for (int j = 0; j <= n; ++j) {
       const double tj = j < n ? temperature[static_cast<std::size_t>(j)] : sky_temperature;
-      q[ui] += s * b[ui * static_cast<std::size_t>(n + 1) + static_cast<std::size_t>(j)] * (black(temperature[ui]) - black(tj));
+      q[ui] += s * b[ui * static_cast<std::size_t>(n + 1) + static_cast<std::size_t>(j)] *
+               (black(temperature[ui]) - black(tj));
     }
   }
   return q;

@@ -28,7 +28,8 @@ SurfaceUnits units_from_map(const Scene& scene, std::vector<int> of_face, std::v
     const int unit = u.of_face[static_cast<std::size_t>(p.face)];
     if (unit < 0) continue;
     u.area[static_cast<std::size_t>(unit)] += p.area;
-    weighted[static_cast<std::size_t>(unit)] += p.area * face_emissivity(scene, scene.faces[static_cast<std::size_t>(p.face)]);
+    weighted[static_cast<std::size_t>(unit)] +=
+        p.area * face_emissivity(scene, scene.faces[static_cast<std::size_t>(p.face)]);
   }
   if (emissivity.size() == n) {
     u.emissivity = std::move(emissivity);

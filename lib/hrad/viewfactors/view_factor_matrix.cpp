@@ -33,7 +33,11 @@ struct Candidates {
 class BoundedPairs {
  public:
   BoundedPairs(const Scene& scene, const std::vector<char>& eligible, double threshold)
-      : scene_(scene), eligible_(eligible), threshold_(threshold), hierarchy_(scene), tree_(scene),
+      : scene_(scene),
+        eligible_(eligible),
+        threshold_(threshold),
+        hierarchy_(scene),
+        tree_(scene),
         transfer_(scene, hierarchy_, &tree_) {
     out_.of_patch.resize(scene.patches.size());
     out_.skipped_bound.assign(scene.patches.size(), 0.0);
@@ -123,7 +127,7 @@ std::vector<int> row_error_rays(const std::vector<DeferredPair>& deferred, const
     const int u = unit[static_cast<std::size_t>(d.p)], v = unit[static_cast<std::size_t>(d.q)];
     const double m = u == v ? 2.0 : 1.0;
     return std::array<std::pair<int, double>, 2>{{{u, m * d.unoccluded / area[static_cast<std::size_t>(u)]},
-                                                   {v, m * d.unoccluded / area[static_cast<std::size_t>(v)]}}};
+                                                  {v, m * d.unoccluded / area[static_cast<std::size_t>(v)]}}};
   };
   for (const DeferredPair& d : deferred) {
     const auto s = shares(d);
@@ -164,7 +168,8 @@ std::size_t ViewFactorMatrix::bytes() const {
 double max_reciprocity_error(const ViewFactorMatrix& m) {
   double worst = 0.0;
   for (int u = 0; u < m.n; ++u)
-    for (std::int64_t k = m.row_begin[static_cast<std::size_t>(u)]; k < m.row_begin[static_cast<std::size_t>(u) + 1]; ++k) {
+    for (std::int64_t k = m.row_begin[static_cast<std::size_t>(u)]; k < m.row_begin[static_cast<std::size_t>(u) + 1];
+         ++k) {
       const int v = m.column[static_cast<std::size_t>(k)];
       const double e = std::abs(m.area[static_cast<std::size_t>(u)] * m.factor(u, k) -
                                 m.area[static_cast<std::size_t>(v)] * m.factor(v, u));
@@ -256,16 +261,26 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
                                          : pair_exchange(evaluator, static_cast<int>(p), q, options.pair);
             ViewFactorCounters& k = row.counters;
             switch (e.pair_class) {
-              case PairClass::kFacingAway: ++k.facing_away; break;
-              case PairClass::kFullyVisible: ++k.fully_visible; break;
-              case PairClass::kFullyHidden: ++k.fully_hidden; break;
-              case PairClass::kPartial: ++k.partial; break;
+              case PairClass::kFacingAway:
+                ++k.facing_away;
+                break;
+              case PairClass::kFullyVisible:
+                ++k.fully_visible;
+                break;
+              case PairClass::kFullyHidden:
+                ++k.fully_hidden;
+                break;
+              case PairClass::kPartial:
+                ++k.partial;
+                break;
             }
             k.closed_forms += e.evaluated ? 1 : 0;
             k.rays += static_cast<std::uint64_t>(e.rays);
             k.regions += static_cast<std::uint64_t>(e.regions);
-            if (defer && e.pair_class == PairClass::kPartial && e.unoccluded > 0.0) row.deferred.emplace_back(q, e.unoccluded);
-            else if (e.exchange > 0.0 || e.error > 0.0) row.pairs.emplace_back(q, e);
+            if (defer && e.pair_class == PairClass::kPartial && e.unoccluded > 0.0)
+              row.deferred.emplace_back(q, e.unoccluded);
+            else if (e.exchange > 0.0 || e.error > 0.0)
+              row.pairs.emplace_back(q, e);
           };
           if (pruned) {
             for (int q : candidates.of_patch[p]) one(q);
@@ -308,21 +323,22 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
       for (std::size_t k = 0; k < deferred.size(); ++k)
         if (redo[k]) round_rays += static_cast<std::uint64_t>(rays[k]);
       if (round_rays == 0) break;
-      ProgressReporter sampling(round == 0 ? "visible fractions" : "visible fractions, rows above the target", round_rays,
-                                "rays", options.progress);
+      ProgressReporter sampling(round == 0 ? "visible fractions" : "visible fractions, rows above the target",
+                                round_rays, "rays", options.progress);
       arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, deferred.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
-          for (std::size_t k = r.begin(); k < r.end(); ++k) {
-            if (!redo[k]) continue;
-            PairExchange e;
-            e.pair_class = PairClass::kPartial;
-            e.unoccluded = deferred[k].unoccluded;
-            e.rays = sampled[k].rays;
-            sample_partial(evaluator, deferred[k].p, deferred[k].q, rays[k], &e);
-            sampled[k] = e;
-            sampling.advance(static_cast<std::uint64_t>(rays[k]));
-          }
-        });
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, deferred.size(), 256),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                            for (std::size_t k = r.begin(); k < r.end(); ++k) {
+                              if (!redo[k]) continue;
+                              PairExchange e;
+                              e.pair_class = PairClass::kPartial;
+                              e.unoccluded = deferred[k].unoccluded;
+                              e.rays = sampled[k].rays;
+                              sample_partial(evaluator, deferred[k].p, deferred[k].q, rays[k], &e);
+                              sampled[k] = e;
+                              sampling.advance(static_cast<std::uint64_t>(rays[k]));
+                            }
+                          });
       });
       sampling.finish();
       // Each row's estimated variance from its sampled pairs (the pairs' own error estimates).
@@ -330,19 +346,24 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
       for (std::size_t k = 0; k < deferred.size(); ++k) {
         const int u = unit[static_cast<std::size_t>(deferred[k].p)], v = unit[static_cast<std::size_t>(deferred[k].q)];
         const double e = sampled[k].error * (u == v ? 2.0 : 1.0);
-        row_variance[static_cast<std::size_t>(u)] += e * e / (m.area[static_cast<std::size_t>(u)] * m.area[static_cast<std::size_t>(u)]);
-        if (v != u) row_variance[static_cast<std::size_t>(v)] += e * e / (m.area[static_cast<std::size_t>(v)] * m.area[static_cast<std::size_t>(v)]);
+        row_variance[static_cast<std::size_t>(u)] +=
+            e * e / (m.area[static_cast<std::size_t>(u)] * m.area[static_cast<std::size_t>(u)]);
+        if (v != u)
+          row_variance[static_cast<std::size_t>(v)] +=
+              e * e / (m.area[static_cast<std::size_t>(v)] * m.area[static_cast<std::size_t>(v)]);
       }
       for (std::size_t k = 0; k < deferred.size(); ++k) {
         const int u = unit[static_cast<std::size_t>(deferred[k].p)], v = unit[static_cast<std::size_t>(deferred[k].q)];
-        const double ratio = std::max(row_variance[static_cast<std::size_t>(u)], row_variance[static_cast<std::size_t>(v)]) / target;
+        const double ratio =
+            std::max(row_variance[static_cast<std::size_t>(u)], row_variance[static_cast<std::size_t>(v)]) / target;
         redo[k] = ratio > 1.0 && rays[k] < options.pair.max_rays;
         if (redo[k]) rays[k] = static_cast<int>(std::min(std::ceil(ratio * rays[k]), double(options.pair.max_rays)));
       }
     }
     for (std::size_t k = 0; k < deferred.size(); ++k) {
       c.rays += static_cast<std::uint64_t>(sampled[k].rays);
-      if (sampled[k].exchange > 0.0 || sampled[k].error > 0.0) add(static_cast<std::size_t>(deferred[k].p), deferred[k].q, sampled[k]);
+      if (sampled[k].exchange > 0.0 || sampled[k].error > 0.0)
+        add(static_cast<std::size_t>(deferred[k].p), deferred[k].q, sampled[k]);
     }
     std::vector<DeferredPair>().swap(deferred);
   }
@@ -354,8 +375,10 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
     std::stable_sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     std::size_t out = 0;
     for (std::size_t i = 0; i < list.size(); ++i) {
-      if (out > 0 && list[out - 1].first == list[i].first) list[out - 1].second += list[i].second;
-      else list[out++] = list[i];
+      if (out > 0 && list[out - 1].first == list[i].first)
+        list[out - 1].second += list[i].second;
+      else
+        list[out++] = list[i];
     }
     list.resize(out);
     list.shrink_to_fit();
@@ -365,7 +388,9 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
     }
   }
   m.row_begin.assign(static_cast<std::size_t>(n) + 1, 0);
-  for (int u = 0; u < n; ++u) m.row_begin[static_cast<std::size_t>(u) + 1] = m.row_begin[static_cast<std::size_t>(u)] + count[static_cast<std::size_t>(u)];
+  for (int u = 0; u < n; ++u)
+    m.row_begin[static_cast<std::size_t>(u) + 1] =
+        m.row_begin[static_cast<std::size_t>(u)] + count[static_cast<std::size_t>(u)];
   m.column.resize(static_cast<std::size_t>(m.row_begin.back()));
   m.exchange.resize(m.column.size());
   std::vector<std::int64_t> fill(m.row_begin.begin(), m.row_begin.end() - 1);
@@ -387,7 +412,8 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
   m.sampling_error.resize(static_cast<std::size_t>(n));
   m.skipped_bound.assign(static_cast<std::size_t>(n), 0.0);
   for (int u = 0; u < n; ++u)
-    m.sampling_error[static_cast<std::size_t>(u)] = std::sqrt(variance[static_cast<std::size_t>(u)]) / m.area[static_cast<std::size_t>(u)];
+    m.sampling_error[static_cast<std::size_t>(u)] =
+        std::sqrt(variance[static_cast<std::size_t>(u)]) / m.area[static_cast<std::size_t>(u)];
   if (pruned)
     for (std::size_t p = 0; p < np; ++p)
       if (eligible[p])

@@ -40,15 +40,15 @@ struct ViewFactorOptions {
 };
 
 struct ViewFactorCounters {
-  std::uint64_t patch_pairs = 0;       ///< unordered pairs of patches that both have a unit
-  std::uint64_t skipped_pairs = 0;     ///< of those, skipped by the cluster bound
-  std::uint64_t facing_away = 0;       ///< culled: exactly 0 without a kernel call
+  std::uint64_t patch_pairs = 0;    ///< unordered pairs of patches that both have a unit
+  std::uint64_t skipped_pairs = 0;  ///< of those, skipped by the cluster bound
+  std::uint64_t facing_away = 0;    ///< culled: exactly 0 without a kernel call
   std::uint64_t fully_visible = 0, fully_hidden = 0, partial = 0;
-  std::uint64_t closed_forms = 0;      ///< polygon_to_polygon() calls
-  std::uint64_t rays = 0;              ///< segments cast for partly visible pairs
-  double classify_seconds = 0.0;       ///< classification and closed forms (with row_error: before sampling)
-  std::uint64_t regions = 0;           ///< exact visible regions computed
-  std::uint64_t cluster_pairs = 0;     ///< node pairs the bounded traversal visited
+  std::uint64_t closed_forms = 0;   ///< polygon_to_polygon() calls
+  std::uint64_t rays = 0;           ///< segments cast for partly visible pairs
+  double classify_seconds = 0.0;    ///< classification and closed forms (with row_error: before sampling)
+  std::uint64_t regions = 0;        ///< exact visible regions computed
+  std::uint64_t cluster_pairs = 0;  ///< node pairs the bounded traversal visited
   double seconds = 0.0;
 };
 
@@ -64,7 +64,9 @@ struct ViewFactorMatrix {
   std::vector<double> skipped_bound;    ///< bound of the factor mass in each row's skipped pairs
   ViewFactorCounters counters;
 
-  double factor(int u, std::int64_t k) const { return exchange[static_cast<std::size_t>(k)] / area[static_cast<std::size_t>(u)]; }
+  double factor(int u, std::int64_t k) const {
+    return exchange[static_cast<std::size_t>(k)] / area[static_cast<std::size_t>(u)];
+  }
   /// F_uv (0 when not stored).
   double factor(int u, int v) const;
   double row_sum(int u) const;

@@ -5,8 +5,8 @@
 
 namespace hrad {
 
-nlohmann::json view_factor_report(const ViewFactorMatrix& m, const SurfaceUnits& units, const ViewFactorOptions& options,
-                                  const ClosureReport* closure) {
+nlohmann::json view_factor_report(const ViewFactorMatrix& m, const SurfaceUnits& units,
+                                  const ViewFactorOptions& options, const ClosureReport* closure) {
   nlohmann::json surfaces = nlohmann::json::array();
   double min_sum = m.n > 0 ? INFINITY : 0.0, max_sum = 0.0, max_error = 0.0, max_skipped = 0.0, sky = 0.0;
   for (int u = 0; u < m.n; ++u) {
@@ -56,12 +56,10 @@ nlohmann::json view_factor_report(const ViewFactorMatrix& m, const SurfaceUnits&
         {"seconds", c.seconds}}},
       {"per_surface", surfaces}};
   if (closure != nullptr)
-    r["closure_adjustment"] = {{"max_row_error_before", closure->max_row_error_before},
-                               {"max_row_error_after", closure->max_row_error_after},
-                               {"max_factor_change", closure->max_factor_change},
-                               {"relative_change", closure->relative_change},
-                               {"rows_not_closable", closure->rows_not_closable},
-                               {"clamped", closure->clamped}};
+    r["closure_adjustment"] = {
+        {"max_row_error_before", closure->max_row_error_before}, {"max_row_error_after", closure->max_row_error_after},
+        {"max_factor_change", closure->max_factor_change},       {"relative_change", closure->relative_change},
+        {"rows_not_closable", closure->rows_not_closable},       {"clamped", closure->clamped}};
   return r;
 }
 

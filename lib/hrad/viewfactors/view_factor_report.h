@@ -13,7 +13,7 @@
 namespace hrad {
 
 /// `closure` may be null (no adjustment was asked for).
-nlohmann::json view_factor_report(const ViewFactorMatrix& m, const SurfaceUnits& units, const ViewFactorOptions& options,
-                                  const ClosureReport* closure);
+nlohmann::json view_factor_report(const ViewFactorMatrix& m, const SurfaceUnits& units,
+                                  const ViewFactorOptions& options, const ClosureReport* closure);
 
 }  // namespace hrad

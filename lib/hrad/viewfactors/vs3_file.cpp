@@ -30,7 +30,8 @@ struct Record {
 
 class LineReader {
  public:
-  LineReader(const std::string& path, std::size_t line, const std::string& text) : path_(path), line_(line), in_(text) {}
+  LineReader(const std::string& path, std::size_t line, const std::string& text)
+      : path_(path), line_(line), in_(text) {}
   bool next(std::string* word) { return static_cast<bool>(in_ >> *word); }
   std::string word(const char* what) {
     std::string w;
@@ -42,7 +43,8 @@ class LineReader {
     const std::string w = word(what);
     int value = 0;
     const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), value);
-    if (ec != std::errc() || end != w.data() + w.size()) throw_at(path_, line_, fmt::format("{}: '{}' is not an integer", what, w));
+    if (ec != std::errc() || end != w.data() + w.size())
+      throw_at(path_, line_, fmt::format("{}: '{}' is not an integer", what, w));
     return value;
   }
   double to_number(const std::string& w, const char* what) const {
@@ -109,9 +111,12 @@ Vs3Model read_vs3(const std::string& path, std::vector<std::string>* warnings) {
         const std::size_t eq = kv.find('=');
         const std::string key = kv.substr(0, eq);
         if (eq == std::string::npos) throw_at(path, line_no, fmt::format("control '{}' is not key=value", kv));
-        static const char* known[] = {"encl", "list", "eps", "maxU", "maxO", "minO", "row", "col", "emit", "out", "prjD"};
-        if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
-          throw_at(path, line_no, fmt::format("unknown control '{}' (encl, list, eps, maxU, maxO, minO, row, col, emit, out)", key));
+        static const char* known[] = {"encl", "list", "eps",  "maxU", "maxO", "minO",
+                                      "row",  "col",  "emit", "out",  "prjD"};
+        if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) ==
+            std::end(known))
+          throw_at(path, line_no,
+                   fmt::format("unknown control '{}' (encl, list, eps, maxU, maxO, minO, row, col, emit, out)", key));
         const double value = r.to_number(kv.substr(eq + 1), key.c_str());
         if (key == "encl") model.enclosure = value != 0.0;
       }
@@ -146,10 +151,12 @@ Vs3Model read_vs3(const std::string& path, std::vector<std::string>* warnings) {
       s.cmb = r.integer("cmb");
       s.emit = r.number("emit");
       s.name = r.rest();
-      if (!(s.emit > 0.0 && s.emit <= 1.0)) throw_at(path, line_no, fmt::format("emissivity {} is not in (0, 1]", s.emit));
+      if (!(s.emit > 0.0 && s.emit <= 1.0))
+        throw_at(path, line_no, fmt::format("emissivity {} is not in (0, 1]", s.emit));
       if ((s.type == 'M' || s.type == 'N') == (s.base == 0))
-        throw_at(path, line_no, s.base == 0 ? "a mask or null surface needs its base surface"
-                                            : "only mask (M) and null (N) surfaces have a base");
+        throw_at(path, line_no,
+                 s.base == 0 ? "a mask or null surface needs its base surface"
+                             : "only mask (M) and null (N) surfaces have a base");
       if (s.base != 0 && (s.base < 1 || s.base > n - 1 || surfaces[static_cast<std::size_t>(s.base - 1)].type != 'S'))
         throw_at(path, line_no, fmt::format("base {} is not an earlier S surface", s.base));
       if (s.cmb < 0 || s.cmb == n) throw_at(path, line_no, fmt::format("cmb {} is not another surface", s.cmb));
@@ -171,7 +178,8 @@ Vs3Model read_vs3(const std::string& path, std::vector<std::string>* warnings) {
     int t = i, steps = 0;
     while (surfaces[static_cast<std::size_t>(t)].cmb != 0) {
       const int next = surfaces[static_cast<std::size_t>(t)].cmb - 1;
-      if (next >= ns) throw_at(path, surfaces[static_cast<std::size_t>(t)].line, fmt::format("cmb {} is not a surface", next + 1));
+      if (next >= ns)
+        throw_at(path, surfaces[static_cast<std::size_t>(t)].line, fmt::format("cmb {} is not a surface", next + 1));
       if (++steps > ns) throw_at(path, surfaces[static_cast<std::size_t>(i)].line, "cmb surfaces form a cycle");
       t = next;
     }
@@ -208,12 +216,14 @@ Vs3Model read_vs3(const std::string& path, std::vector<std::string>* warnings) {
     const Vec3 n = newell_normal(b).normalized();
     const double tol = 1e-9 * polygon_diameter(b);
     for (const Vec3& x : p) {
-      if (std::abs(n.dot(x - b[0])) > tol) throw_at(path, s.line, fmt::format("not in the plane of its base surface {}", s.base));
+      if (std::abs(n.dot(x - b[0])) > tol)
+        throw_at(path, s.line, fmt::format("not in the plane of its base surface {}", s.base));
       for (std::size_t k = 0; k < b.size(); ++k)
         if (n.cross(b[(k + 1) % b.size()] - b[k]).dot(x - b[k]) < -tol * polygon_diameter(b))
           throw_at(path, s.line, fmt::format("not inside its base surface {}", s.base));
     }
-    if (newell_normal(p).dot(n) < 0.0) std::reverse(polygon[static_cast<std::size_t>(i)].begin(), polygon[static_cast<std::size_t>(i)].end());
+    if (newell_normal(p).dot(n) < 0.0)
+      std::reverse(polygon[static_cast<std::size_t>(i)].begin(), polygon[static_cast<std::size_t>(i)].end());
     holes[static_cast<std::size_t>(s.base - 1)].push_back(i);
   }
 
@@ -226,7 +236,8 @@ Vs3Model read_vs3(const std::string& path, std::vector<std::string>* warnings) {
     const Record& s = surfaces[static_cast<std::size_t>(i)];
     if (s.type == 'N') continue;
     auto [it, added] = material_of_emit.emplace(s.emit, static_cast<int>(model.scene.materials.size()));
-    if (added) model.scene.materials.push_back({fmt::format("emit={}", s.emit), Rgb::Constant(1.0 - s.emit), Rgb::Zero()});
+    if (added)
+      model.scene.materials.push_back({fmt::format("emit={}", s.emit), Rgb::Constant(1.0 - s.emit), Rgb::Zero()});
     std::vector<std::vector<Vec3>> pieces = {polygon[static_cast<std::size_t>(i)]};
     const Vec3 n = newell_normal(pieces[0]).normalized();
     const double a0 = polygon_area(pieces[0]);
@@ -274,21 +285,24 @@ void write_vs3(std::ostream& out, const Scene& scene, const SurfaceUnits& units,
   std::vector<std::vector<int>> patch_vertices(scene.patches.size());
   for (std::size_t p = 0; p < scene.patches.size(); ++p)
     for (const Vec3& v : scene.patches[p].vertices) {
-      const auto [it, added] = index.emplace(std::array<double, 3>{v.x(), v.y(), v.z()}, static_cast<int>(index.size()) + 1);
+      const auto [it, added] =
+          index.emplace(std::array<double, 3>{v.x(), v.y(), v.z()}, static_cast<int>(index.size()) + 1);
       if (added) out << fmt::format("V {} {:.17g} {:.17g} {:.17g}\n", it->second, v.x(), v.y(), v.z());
       patch_vertices[p].push_back(it->second);
     }
   int number = 0;
   for (std::size_t f = 0; f < scene.faces.size(); ++f) {
     const InputFace& face = scene.faces[f];
-    const double emit = face.material >= 0 ? 1.0 - scene.materials[static_cast<std::size_t>(face.material)].reflectance.mean() : 1.0;
+    const double emit =
+        face.material >= 0 ? 1.0 - scene.materials[static_cast<std::size_t>(face.material)].reflectance.mean() : 1.0;
     std::string name = units.names[static_cast<std::size_t>(units.of_face[f])];
     for (char& c : name)
       if (std::isspace(static_cast<unsigned char>(c))) c = '_';
     const int first = number + 1;
     for (int p : face.patches) {
       const auto& v = patch_vertices[static_cast<std::size_t>(p)];
-      if (v.size() > 4) throw Error(fmt::format("--write-vs3: patch {} has {} vertices (View3D takes 3 or 4)", p, v.size()));
+      if (v.size() > 4)
+        throw Error(fmt::format("--write-vs3: patch {} has {} vertices (View3D takes 3 or 4)", p, v.size()));
       ++number;
       out << fmt::format("S {} {} {} {} {} 0 {} {:.17g} {}\n", number, v[0], v[1], v[2], v.size() == 4 ? v[3] : 0,
                          number == first ? 0 : first, emit, name);

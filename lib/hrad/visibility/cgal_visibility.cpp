@@ -93,7 +93,9 @@ bool crossing_inside(const Point& a, const Point& b, const Triangle& t) { return
 struct DoubleOps {
   using P = Point;
   using Tri = Triangle;
-  static CGAL::Orientation orient(const P& a, const P& b, const P& c, const P& d) { return CGAL::orientation(a, b, c, d); }
+  static CGAL::Orientation orient(const P& a, const P& b, const P& c, const P& d) {
+    return CGAL::orientation(a, b, c, d);
+  }
   static bool collinear(const P& a, const P& b, const P& c) { return CGAL::collinear(a, b, c); }
   static Vec3 approx(const P& p) { return Vec3(p.x(), p.y(), p.z()); }
 };
@@ -128,7 +130,9 @@ struct PatchOps {
   using P = PatchPoint;
   using Tri = std::array<PatchPoint, 3>;
   using DoubleExact = CGAL::Simple_cartesian<CGAL::Mpzf>;
-  static DoubleExact::Point_3 exact_double(const Point& p) { return {CGAL::Mpzf(p.x()), CGAL::Mpzf(p.y()), CGAL::Mpzf(p.z())}; }
+  static DoubleExact::Point_3 exact_double(const Point& p) {
+    return {CGAL::Mpzf(p.x()), CGAL::Mpzf(p.y()), CGAL::Mpzf(p.z())};
+  }
   static CGAL::Orientation orient(const P& a, const P& b, const P& c, const P& d) {
     const CGAL::Uncertain<CGAL::Orientation> o = CGAL::orientation(a.box, b.box, c.box, d.box);
     if (CGAL::is_certain(o)) return CGAL::get_certain(o);
@@ -141,7 +145,8 @@ struct PatchOps {
     const auto n = CGAL::cross_product(b.box - a.box, c.box - a.box);
     for (int k = 0; k < 3; ++k)
       if (CGAL::is_certain(CGAL::is_zero(n[k])) && !CGAL::get_certain(CGAL::is_zero(n[k]))) return false;
-    if (!a.plane && !b.plane && !c.plane) return CGAL::collinear(exact_double(a.p), exact_double(b.p), exact_double(c.p));
+    if (!a.plane && !b.plane && !c.plane)
+      return CGAL::collinear(exact_double(a.p), exact_double(b.p), exact_double(c.p));
     return CGAL::collinear(a.exact(), b.exact(), c.exact());
   }
   static Vec3 approx(const P& p) { return Vec3(p.p.x(), p.p.y(), p.p.z()); }
@@ -164,7 +169,11 @@ std::array<int, 3> plane_triple(std::span<const typename EK::P> poly) {
   for (int j = 1; j < n; ++j)
     for (int k = j + 1; k < n; ++k) {
       const double w = (approx(j) - approx(0)).cross(approx(k) - approx(0)).squaredNorm();
-      if (w > best && !EK::collinear(poly[0], poly[j], poly[k])) { best = w; best_j = j; best_k = k; }
+      if (w > best && !EK::collinear(poly[0], poly[j], poly[k])) {
+        best = w;
+        best_j = j;
+        best_k = k;
+      }
     }
   if (best_j < 0) return {-1, -1, -1};
   return {0, best_j, best_k};
@@ -221,8 +230,10 @@ std::vector<Facet<EK>> hull_facets(std::span<const typename EK::P> pts, std::siz
                  f.side(pts[k]) == CGAL::COPLANAR;
         });
         if (known) continue;
-        if (neg) facets.push_back({pts[i], pts[k], pts[j]});
-        else facets.push_back({pts[i], pts[j], pts[k]});
+        if (neg)
+          facets.push_back({pts[i], pts[k], pts[j]});
+        else
+          facets.push_back({pts[i], pts[j], pts[k]});
       }
   return facets;
 }
@@ -411,29 +422,37 @@ class CgalVisibility final : public Visibility {
     VisibilityCounters& k = counters();
     k.pair_queries.fetch_add(1, std::memory_order_relaxed);
     switch (c) {
-      case PairClass::kFacingAway: k.pairs_facing_away.fetch_add(1, std::memory_order_relaxed); break;
-      case PairClass::kFullyVisible: k.pairs_visible.fetch_add(1, std::memory_order_relaxed); break;
-      case PairClass::kFullyHidden: k.pairs_hidden.fetch_add(1, std::memory_order_relaxed); break;
-      case PairClass::kPartial: k.pairs_partial.fetch_add(1, std::memory_order_relaxed); break;
+      case PairClass::kFacingAway:
+        k.pairs_facing_away.fetch_add(1, std::memory_order_relaxed);
+        break;
+      case PairClass::kFullyVisible:
+        k.pairs_visible.fetch_add(1, std::memory_order_relaxed);
+        break;
+      case PairClass::kFullyHidden:
+        k.pairs_hidden.fetch_add(1, std::memory_order_relaxed);
+        break;
+      case PairClass::kPartial:
+        k.pairs_partial.fetch_add(1, std::memory_order_relaxed);
+        break;
     }
   }
 
-  std::vector<Triangle> triangles_;        ///< non-degenerate fan triangles of all patches
+  std::vector<Triangle> triangles_;  ///< non-degenerate fan triangles of all patches
   std::vector<int> triangle_patch_;
   std::vector<CGAL::Bbox_3> triangle_boxes_;
   std::vector<std::pair<int, int>> patch_triangles_;  ///< [begin, end) into triangles_ per patch
   std::vector<detail::Triangle3> triangle_coords_;    ///< triangles_ as doubles
-  std::vector<int> triangle_plane_;        ///< plane_classes() of triangles_
-  std::vector<int> patch_axis_;            ///< the axis of each patch's largest normal component
+  std::vector<int> triangle_plane_;                   ///< plane_classes() of triangles_
+  std::vector<int> patch_axis_;                       ///< the axis of each patch's largest normal component
   std::vector<std::vector<Point>> patch_points_;      ///< each patch's vertices
-  std::vector<double> patch_level_;        ///< the patch's coordinate on that axis when constant, else NaN
-  std::vector<char> patch_planar_;         ///< all vertices exactly coplanar
-  std::vector<Point> vertices_;            ///< every patch vertex, for the convex-hull test
-  double magnitude_ = 0.0;                 ///< largest |coordinate| of the scene
+  std::vector<double> patch_level_;                   ///< the patch's coordinate on that axis when constant, else NaN
+  std::vector<char> patch_planar_;                    ///< all vertices exactly coplanar
+  std::vector<Point> vertices_;                       ///< every patch vertex, for the convex-hull test
+  double magnitude_ = 0.0;                            ///< largest |coordinate| of the scene
   Tree tree_;
   VisibilityOptions options_;
-  detail::SegmentBvh bvh_;                 ///< segment queries (unless options_ ask for tree_)
-  std::vector<Triangle> bvh_triangles_;    ///< triangles_ in the hierarchy's leaf order (locality)
+  detail::SegmentBvh bvh_;               ///< segment queries (unless options_ ask for tree_)
+  std::vector<Triangle> bvh_triangles_;  ///< triangles_ in the hierarchy's leaf order (locality)
   std::vector<detail::Triangle3> bvh_triangle_coords_;
   std::vector<int> bvh_plane_;
   std::vector<int> bvh_patch_;
@@ -463,7 +482,8 @@ CgalVisibility::CgalVisibility(const Scene& scene, const VisibilityOptions& opti
     }
     tri = plane_triple(pts);
     if (tri[0] >= 0)
-      for (const Point& x : pts) planar = planar && CGAL::orientation(pts[tri[0]], pts[tri[1]], pts[tri[2]], x) == CGAL::COPLANAR;
+      for (const Point& x : pts)
+        planar = planar && CGAL::orientation(pts[tri[0]], pts[tri[1]], pts[tri[2]], x) == CGAL::COPLANAR;
     patch_triangles_.emplace_back(begin, static_cast<int>(triangles_.size()));
     patch_planar_.push_back(planar ? 1 : 0);
     patch_points_.push_back(pts);
@@ -540,7 +560,12 @@ class BlockingTraversal {
   BlockingTraversal(const std::vector<Triangle>& triangles, const std::vector<int>& patch_of,
                     const std::vector<CGAL::Bbox_3>& boxes, const SegmentBoxCull& cull, int patch_a, int patch_b,
                     const Meets& meets)
-      : triangles_(triangles), patch_of_(patch_of), boxes_(boxes), cull_(cull), pa_(patch_a), pb_(patch_b),
+      : triangles_(triangles),
+        patch_of_(patch_of),
+        boxes_(boxes),
+        cull_(cull),
+        pa_(patch_a),
+        pb_(patch_b),
         meets_(meets) {}
   bool go_further() const { return !blocked_; }
   void intersection(const Segment&, const Primitive& primitive) {
@@ -605,9 +630,8 @@ bool CgalVisibility::on_surface(std::span<const Vec3> poly, int patch) const {
   if (std::isnan(level)) {
     // Not axis-aligned: only the patch's own vertices are known to lie on it without arithmetic.
     const auto& own = patch_points_[static_cast<std::size_t>(patch)];
-    return std::all_of(poly.begin(), poly.end(), [&](const Vec3& v) {
-      return std::find(own.begin(), own.end(), to_point(v)) != own.end();
-    });
+    return std::all_of(poly.begin(), poly.end(),
+                       [&](const Vec3& v) { return std::find(own.begin(), own.end(), to_point(v)) != own.end(); });
   }
   const int k = patch_axis_[static_cast<std::size_t>(patch)];
   return std::all_of(poly.begin(), poly.end(), [&](const Vec3& v) { return v[k] == level; });
@@ -652,7 +676,8 @@ bool CgalVisibility::any_triangle_meets(const Point& a, int patch_a, const Point
       if (patch == patch_a || patch == patch_b) continue;
       const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
       for (int i = begin; i < end; ++i)
-        if (cull.may_meet(triangle_boxes_[static_cast<std::size_t>(i)]) && meets(triangle_ref(static_cast<std::size_t>(i))))
+        if (cull.may_meet(triangle_boxes_[static_cast<std::size_t>(i)]) &&
+            meets(triangle_ref(static_cast<std::size_t>(i))))
           return true;
     }
     return false;
@@ -661,7 +686,8 @@ bool CgalVisibility::any_triangle_meets(const Point& a, int patch_a, const Point
     const detail::SegmentCull cull({a.x(), a.y(), a.z()}, {b.x(), b.y(), b.z()}, magnitude_);
     return bvh_.any_hit(cull, [&](std::uint32_t i) {
       const int patch = bvh_patch_[i];
-      return patch != patch_a && patch != patch_b && meets(TriangleRef{bvh_triangles_[i], bvh_triangle_coords_[i], bvh_plane_[i]});
+      return patch != patch_a && patch != patch_b &&
+             meets(TriangleRef{bvh_triangles_[i], bvh_triangle_coords_[i], bvh_plane_[i]});
     });
   }
   const SegmentBoxCull cull(a, b, magnitude_);
@@ -687,8 +713,9 @@ bool CgalVisibility::blocked_between(const PatchEnd& ea, int patch_a, const Patc
   // An end lies exactly in the plane of its triangle, so in that of every triangle coplanar with it.
   const int plane_a = ea.triangle >= 0 ? triangle_plane_[static_cast<std::size_t>(ea.triangle)] : -1;
   const int plane_b = eb.triangle >= 0 ? triangle_plane_[static_cast<std::size_t>(eb.triangle)] : -1;
-  return any_triangle_meets(to_point(ea.end.x), patch_a, to_point(eb.end.x), patch_b, occluders,
-                            [&](const TriangleRef& t) { return segment.meets(t.coords, t.plane == plane_a, t.plane == plane_b); });
+  return any_triangle_meets(
+      to_point(ea.end.x), patch_a, to_point(eb.end.x), patch_b, occluders,
+      [&](const TriangleRef& t) { return segment.meets(t.coords, t.plane == plane_a, t.plane == plane_b); });
 }
 
 Sight CgalVisibility::sight(const Vec3& a, int patch_a, const Vec3& b, int patch_b) const {
@@ -770,14 +797,22 @@ class ShaftPlanes {
 template <class Ops, class TriangleOf>
 class ShaftTest {
  public:
-  ShaftTest(const std::vector<Triangle>& triangles, const TriangleOf& triangle_of,
-                 const std::vector<int>& patch_of, const std::vector<int>& plane_of, std::array<int, 2> end_planes,
-                 std::span<const Facet<Ops>> facets, std::span<const typename Ops::P> shaft_points,
-                 std::span<const std::pair<Point, Point>> probes, bool exact_contacts, int patch_a, int patch_b,
-                 std::vector<int>* hits)
-      : triangles_(triangles), triangle_of_(triangle_of), patch_of_(patch_of), plane_of_(plane_of),
-        end_planes_(end_planes), facets_(facets), pts_(shaft_points), probes_(probes),
-        exact_contacts_(exact_contacts), pa_(patch_a), pb_(patch_b), hits_(hits) {}
+  ShaftTest(const std::vector<Triangle>& triangles, const TriangleOf& triangle_of, const std::vector<int>& patch_of,
+            const std::vector<int>& plane_of, std::array<int, 2> end_planes, std::span<const Facet<Ops>> facets,
+            std::span<const typename Ops::P> shaft_points, std::span<const std::pair<Point, Point>> probes,
+            bool exact_contacts, int patch_a, int patch_b, std::vector<int>* hits)
+      : triangles_(triangles),
+        triangle_of_(triangle_of),
+        patch_of_(patch_of),
+        plane_of_(plane_of),
+        end_planes_(end_planes),
+        facets_(facets),
+        pts_(shaft_points),
+        probes_(probes),
+        exact_contacts_(exact_contacts),
+        pa_(patch_a),
+        pb_(patch_b),
+        hits_(hits) {}
   void operator()(std::size_t index) {
     const int patch = patch_of_[index];
     if (patch == pa_ || patch == pb_) return;
@@ -964,7 +999,8 @@ PairClass CgalVisibility::classify_points(std::span<const typename Ops::P> a, in
     const Vec3 centre = 0.5 * (mean(a) + mean(b));
     auto toward_centre = [&](const Point& p) { return to_point(0.9 * Vec3(p.x(), p.y(), p.z()) + 0.1 * centre); };
     auto strictly_inside = [&](const Point& p) {
-      return std::all_of(facets.begin(), facets.end(), [&](const Facet<Ops>& f) { return f.side(p) == CGAL::POSITIVE; });
+      return std::all_of(facets.begin(), facets.end(),
+                         [&](const Facet<Ops>& f) { return f.side(p) == CGAL::POSITIVE; });
     };
     for (const Point& p : a)
       for (const Point& q : b) {
@@ -982,9 +1018,9 @@ PairClass CgalVisibility::classify_points(std::span<const typename Ops::P> a, in
     const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
     return begin < end ? triangle_plane_[static_cast<std::size_t>(begin)] : -2;
   };
-  ShaftTest<Ops, decltype(triangle_of)> test(
-      triangles_, triangle_of, triangle_patch_, triangle_plane_, {end_plane(patch_a, a.size()), end_plane(patch_b, b.size())},
-      facets, pts, probes, options_.exact_shaft_contacts, patch_a, patch_b, &hits);
+  ShaftTest<Ops, decltype(triangle_of)> test(triangles_, triangle_of, triangle_patch_, triangle_plane_,
+                                             {end_plane(patch_a, a.size()), end_plane(patch_b, b.size())}, facets, pts,
+                                             probes, options_.exact_shaft_contacts, patch_a, patch_b, &hits);
   const ShaftPlanes planes(std::span<const Facet<Ops>>(facets), magnitude_);
   if (candidates == nullptr) {
     ShaftTraversal traversal(triangles_, triangle_boxes_, planes, test);
@@ -1008,8 +1044,8 @@ PairClass CgalVisibility::classify_points(std::span<const typename Ops::P> a, in
   return PairClass::kPartial;
 }
 
-PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a, std::span<const Point> b,
-                                           int patch_b, bool ends_on_patches, const std::vector<int>* candidates,
+PairClass CgalVisibility::classify_corners(std::span<const Point> a, int patch_a, std::span<const Point> b, int patch_b,
+                                           bool ends_on_patches, const std::vector<int>* candidates,
                                            std::vector<int>* occluders) const {
   std::vector<Point> pts(a.begin(), a.end());
   pts.insert(pts.end(), b.begin(), b.end());
@@ -1044,9 +1080,16 @@ VisibilityEstimate CgalVisibility::estimate(std::span<const Vec3> a, int patch_a
   e.pair_class = classify(a, patch_a, b, patch_b);
   switch (e.pair_class) {
     case PairClass::kFacingAway:
-    case PairClass::kFullyHidden: e.fraction = 0.0; e.error = 0.0; return e;
-    case PairClass::kFullyVisible: e.fraction = 1.0; e.error = 0.0; return e;
-    case PairClass::kPartial: break;
+    case PairClass::kFullyHidden:
+      e.fraction = 0.0;
+      e.error = 0.0;
+      return e;
+    case PairClass::kFullyVisible:
+      e.fraction = 1.0;
+      e.error = 0.0;
+      return e;
+    case PairClass::kPartial:
+      break;
   }
   // Only mutually facing point pairs count: (a, b) has positive cosines at both ends iff b lies
   // strictly in front of A's plane and a strictly in front of B's plane, so these pairs form the
@@ -1083,17 +1126,24 @@ VisibilityEstimate CgalVisibility::estimate(std::span<const Vec3> a, int patch_a
   return e;
 }
 
-VisibilityEstimate CgalVisibility::estimate_from_point(const Vec3& x, int patch_x, std::span<const Vec3> b,
-                                                       int patch_b, int samples, std::uint64_t seed) const {
+VisibilityEstimate CgalVisibility::estimate_from_point(const Vec3& x, int patch_x, std::span<const Vec3> b, int patch_b,
+                                                       int samples, std::uint64_t seed) const {
   counters().point_queries.fetch_add(1, std::memory_order_relaxed);
   VisibilityEstimate e;
   const Point px = to_point(x);
   e.pair_class = classify_corners(std::span<const Point>(&px, 1), patch_x, corners(b), patch_b);
   switch (e.pair_class) {
     case PairClass::kFacingAway:
-    case PairClass::kFullyHidden: e.fraction = 0.0; e.error = 0.0; return e;
-    case PairClass::kFullyVisible: e.fraction = 1.0; e.error = 0.0; return e;
-    case PairClass::kPartial: break;
+    case PairClass::kFullyHidden:
+      e.fraction = 0.0;
+      e.error = 0.0;
+      return e;
+    case PairClass::kFullyVisible:
+      e.fraction = 1.0;
+      e.error = 0.0;
+      return e;
+    case PairClass::kPartial:
+      break;
   }
   detail::Rng rng(seed);
   std::vector<Vec2> ub;

@@ -39,9 +39,7 @@ Vec3 middle(const std::array<double, 6>& b) {
   return Vec3(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]));
 }
 
-double width(const std::array<double, 6>& b) {
-  return std::max({b[1] - b[0], b[3] - b[2], b[5] - b[4]});
-}
+double width(const std::array<double, 6>& b) { return std::max({b[1] - b[0], b[3] - b[2], b[5] - b[4]}); }
 
 }  // namespace
 
@@ -108,7 +106,8 @@ bool OnPatchSegment::meets(const Triangle3& t, bool a_in_plane, bool b_in_plane)
     // orientations against t's edges have strict opposite signs) misses it, whatever side
     // of t's plane an end near it lies on.
     const auto side = [&](bool in_plane, const auto& x) {
-      return in_plane ? CGAL::make_uncertain(CGAL::COPLANAR) : CGAL::make_uncertain(CGAL::orientation(tri[0], tri[1], tri[2], x));
+      return in_plane ? CGAL::make_uncertain(CGAL::COPLANAR)
+                      : CGAL::make_uncertain(CGAL::orientation(tri[0], tri[1], tri[2], x));
     };
     const auto oa = side(a_in_plane, p), ob = side(b_in_plane, q);
     if (CGAL::certainly(oa == ob) && CGAL::certainly(oa != CGAL::COPLANAR)) return false;

@@ -47,9 +47,9 @@ class OnPatchSegment {
   bool decide(Decide&& decide) const;
 
   SegmentEnd a_, b_;
-  std::array<double, 6> a_bounds_{}, b_bounds_{};  ///< interval enclosures: lo x, hi x, lo y, ...
+  std::array<double, 6> a_bounds_{}, b_bounds_{};     ///< interval enclosures: lo x, hi x, lo y, ...
   Vec3 a_mid_ = Vec3::Zero(), b_mid_ = Vec3::Zero();  ///< the enclosures' middles
-  double reach_ = 0.0;                               ///< the wider enclosure's width
+  double reach_ = 0.0;                                ///< the wider enclosure's width
 };
 
 }  // namespace hrad::detail

@@ -62,7 +62,10 @@ SegmentBvh::SegmentBvh(const std::vector<Box3>& boxes) {
       build[t.node].first = t.begin;
       build[t.node].count = n;
     };
-    if (n <= kLeafSize || t.depth >= kMaxDepth) { make_leaf(); continue; }
+    if (n <= kLeafSize || t.depth >= kMaxDepth) {
+      make_leaf();
+      continue;
+    }
     // Binned SAH over the centroids: cost of a split = sum over sides of half-area * count.
     int best_axis = -1, best_split = 0;
     double best_cost = INFINITY;
@@ -100,7 +103,10 @@ SegmentBvh::SegmentBvh(const std::vector<Box3>& boxes) {
     if (best_axis >= 0) {
       const double lo = centres.lo[best_axis], extent = centres.hi[best_axis] - lo;
       // A leaf costs one exact test per primitive; a split costs about one box test more.
-      if (n <= 2 * kLeafSize && best_cost >= (n - 1.0) * bounds.half_area()) { make_leaf(); continue; }
+      if (n <= 2 * kLeafSize && best_cost >= (n - 1.0) * bounds.half_area()) {
+        make_leaf();
+        continue;
+      }
       const auto split = std::partition(order_.begin() + t.begin, order_.begin() + t.end, [&](std::uint32_t i) {
         return std::min(kBins - 1, static_cast<int>(kBins * ((centre[i][best_axis] - lo) / extent))) < best_split;
       });

@@ -1,9 +1,9 @@
 // A compact bounding-volume hierarchy for any-hit segment queries: binned surface-area-heuristic
 // build (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies"), collapsed to
 // four children per node whose float boxes are tested together with SSE (Dammertz et al. 2008,
-// "Shallow bounding volume hierarchies for fast SIMD ray tracing"), iterative traversal. It only culls: the caller's exact
-// test decides every primitive, and every culling test is conservative (it can visit a box the
-// segment misses, never skip one it meets). No CGAL here.
+// "Shallow bounding volume hierarchies for fast SIMD ray tracing"), iterative traversal. It only culls: the caller's
+// exact test decides every primitive, and every culling test is conservative (it can visit a box the segment misses,
+// never skip one it meets). No CGAL here.
 #pragma once
 
 #include <algorithm>
@@ -136,7 +136,7 @@ class SegmentBvh {
     float lo[3][4], hi[3][4];  ///< [axis][child], rounded outward from the double boxes
     std::uint32_t child[4];
     std::uint32_t count[4];
-    int valid = 0;             ///< bit i set when child i exists
+    int valid = 0;  ///< bit i set when child i exists
   };
   std::vector<Node> nodes_;
   float root_lo_[3], root_hi_[3];

@@ -44,9 +44,10 @@ bool line_meets_triangle(const P& a, const P& b, const T& t, Orient&& orient) {
 
 template <class K>
 bool crossing_inside(const typename K::Point_3& a, const typename K::Point_3& b, const typename K::Triangle_3& t) {
-  return line_meets_triangle(a, b, t, [](const auto& p, const auto& q, const auto& r, const auto& s) -> CGAL::Orientation {
-    return CGAL::orientation(p, q, r, s);
-  });
+  return line_meets_triangle(a, b, t,
+                             [](const auto& p, const auto& q, const auto& r, const auto& s) -> CGAL::Orientation {
+                               return CGAL::orientation(p, q, r, s);
+                             });
 }
 
 /// The open segment (a, b), a != b, meets the closed non-degenerate triangle t.
@@ -55,9 +56,9 @@ bool open_segment_meets_triangle(const typename K::Point_3& a, const typename K:
                                  const typename K::Triangle_3& t) {
   const CGAL::Orientation oa = CGAL::orientation(t[0], t[1], t[2], a);
   const CGAL::Orientation ob = CGAL::orientation(t[0], t[1], t[2], b);
-  if (oa == ob && oa != CGAL::COPLANAR) return false;                      // same open side
+  if (oa == ob && oa != CGAL::COPLANAR) return false;  // same open side
   if (oa != CGAL::COPLANAR && ob != CGAL::COPLANAR) return crossing_inside<K>(a, b, t);
-  if (oa != CGAL::COPLANAR || ob != CGAL::COPLANAR) return false;          // meets the plane at an endpoint only
+  if (oa != CGAL::COPLANAR || ob != CGAL::COPLANAR) return false;  // meets the plane at an endpoint only
   // The segment lies in t's plane.
   const bool a_in = in_closed_coplanar_triangle<K>(a, t);
   const bool b_in = in_closed_coplanar_triangle<K>(b, t);

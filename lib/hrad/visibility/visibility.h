@@ -41,8 +41,8 @@ struct VisibilityCounters {
   std::atomic<std::uint64_t> point_queries{0};  ///< estimate_from_point() calls
 
   void reset() {
-    for (auto* c : {&segment_queries, &pairs_facing_away, &pairs_visible, &pairs_hidden, &pairs_partial,
-                    &pair_queries, &point_queries})
+    for (auto* c : {&segment_queries, &pairs_facing_away, &pairs_visible, &pairs_hidden, &pairs_partial, &pair_queries,
+                    &point_queries})
       c->store(0, std::memory_order_relaxed);
   }
 };

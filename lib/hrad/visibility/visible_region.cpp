@@ -86,7 +86,11 @@ VisibleRegion visible_region(const Scene& scene, const Vec3& x_in, int patch_x, 
   std::size_t tj = 0, tk = 0;
   for (std::size_t j = 1; j < src.size() && tk == 0; ++j)
     for (std::size_t k = j + 1; k < src.size(); ++k)
-      if (!CGAL::collinear(src[0], src[j], src[k])) { tj = j; tk = k; break; }
+      if (!CGAL::collinear(src[0], src[j], src[k])) {
+        tj = j;
+        tk = k;
+        break;
+      }
   if (tk == 0) return result;
   const AffinePlane plane = AffinePlane::through(src[0], src[tj], src[tk]);
   const P3 x = to_exact(x_in);
@@ -119,7 +123,11 @@ VisibleRegion visible_region(const Scene& scene, const Vec3& x_in, int patch_x, 
   // The pyramid from x over the source: one plane through x and each source edge, oriented so
   // that the source's vertex mean is inside.
   FT mx = 0, my = 0, mz = 0;
-  for (const P3& p : src) { mx += p.x(); my += p.y(); mz += p.z(); }
+  for (const P3& p : src) {
+    mx += p.x();
+    my += p.y();
+    mz += p.z();
+  }
   const FT count(static_cast<int>(src.size()));
   const P3 mean(mx / count, my / count, mz / count);
   std::vector<AffinePlane> cone{plane};
