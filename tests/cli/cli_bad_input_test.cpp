@@ -3,8 +3,12 @@
 // before any work: stderr holds the error line only (no progress).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "run_hrad.h"
 
@@ -295,6 +299,29 @@ TEST(CliOutOfMemory, NamesWhatWasBeingAllocatedAndTheOption) {
   EXPECT_EQ(lines[0].rfind("hrad: error: out of memory in 'solve' while allocating the ", 0), 0u) << lines[0];
   EXPECT_NE(lines[0].find(": raise --aeps"), std::string::npos) << lines[0];
   EXPECT_EQ(dir.entries(), 2u) << "an output (or temporary) file was left behind";
+}
+
+// The power check after a solve needs an Embree device, which a tight address-space limit can refuse
+// (Embree reserves memory when it starts). The solve's own work must not be lost then: the solution
+// and the report are written, with a warning in place of the power line (or, where the limit leaves
+// Embree room, the power line as usual).
+TEST(CliOutOfMemory, ASolveUnderATightLimitIsWrittenEvenIfThePowerCheckCannotRun) {
+  TempDir dir;
+  const std::string d = dir.root().string();
+  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 150000; '" HRAD_EXECUTABLE "' solve '" HRAD_SOURCE_DIR
+                               "/notebooks_data/scenes/simple_room.obj' --threads 1 --out " +
+                                   d + "/s.ply --report " + d + "/r.json",
+                               dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(d + "/s.ply"));
+  ASSERT_TRUE(std::filesystem::exists(d + "/r.json"));
+  const bool line = r.out.find("power: emitted") != std::string::npos;
+  const bool warned = r.err.find("warning: power balance not checked (") != std::string::npos;
+  EXPECT_NE(line, warned) << r.out << r.err;
+  std::ifstream in(d + "/r.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["power_balance"].is_null(), warned);
+  EXPECT_GT(report["elements"].get<double>(), 0.0);
 }
 
 }  // namespace
