@@ -304,16 +304,21 @@ TEST(Hierarchical, UniformlyEmittingFacetedSphereIsEOverOneMinusRhoPerElement) {
   EXPECT_LT(worst_element_deviation(sol, 1.0 / (1.0 - rho)), 0.01);
 }
 
+// A closed 3 x 2 x 4 room whose walls differ in reflectance and colour; only the ceiling emits.
+Scene coloured_room() {
+  return make_box(3.0, 2.0, 4.0,
+                  {gray(0.3, 0.0),
+                   gray(0.8, 10.0),
+                   {"red", Rgb(0.7, 0.1, 0.1), Rgb::Zero()},
+                   {"green", Rgb(0.1, 0.6, 0.2), Rgb::Zero()},
+                   gray(0.5, 0.0),
+                   gray(0.6, 0.0)});
+}
+
 TEST(Hierarchical, EnergyBalanceInAClosedColouredRoom) {
   // Power absorbed equals power emitted: sum_i A_i (1 - rho_i) H_i = sum_i A_i E_i with the
   // irradiance H_i = (B_i - E_i) / rho_i. Walls differ in reflectance; only the ceiling emits.
-  const Scene s = make_box(3.0, 2.0, 4.0,
-                           {gray(0.3, 0.0),
-                            gray(0.8, 10.0),
-                            {"red", Rgb(0.7, 0.1, 0.1), Rgb::Zero()},
-                            {"green", Rgb(0.1, 0.6, 0.2), Rgb::Zero()},
-                            gray(0.5, 0.0),
-                            gray(0.6, 0.0)});
+  const Scene s = coloured_room();
   Solution sol;
   const SolveSummary sum = solve_hr(s, &sol);
   ASSERT_EQ(sum.termination, Termination::kConverged) << sum.message;
@@ -349,13 +354,7 @@ TEST(Hierarchical, ScaledScenesGiveTheSameAnswer) {
   // Without occlusion every decision depends on factors and area ratios only: the same mesh, the
   // same links and the same radiosity up to the iteration tolerance (1e-6), from micrometres to
   // megametres.
-  const Scene base = make_box(3.0, 2.0, 4.0,
-                              {gray(0.3, 0.0),
-                               gray(0.8, 10.0),
-                               {"red", Rgb(0.7, 0.1, 0.1), Rgb::Zero()},
-                               {"green", Rgb(0.1, 0.6, 0.2), Rgb::Zero()},
-                               gray(0.5, 0.0),
-                               gray(0.6, 0.0)});
+  const Scene base = coloured_room();
   Solution reference;
   const SolveSummary ref_sum = solve_hr(base, &reference);
   // Rounded (decimal) scales move where the iteration stops by less than its tolerance: 1e-5 of

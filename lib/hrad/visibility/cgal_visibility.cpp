@@ -1074,23 +1074,20 @@ PairClass CgalVisibility::classify_on_patches(std::span<const Vec3> a, int patch
   return classify_points<PatchOps>(pa, patch_a, pb, patch_b, box, true, candidates, occluders);
 }
 
+// Sets `e` from a pair's class where the class settles it (hidden or facing away: 0, fully visible:
+// 1, exactly); false for a partly visible pair, which is sampled.
+bool settled(PairClass c, VisibilityEstimate* e) {
+  e->pair_class = c;
+  if (c == PairClass::kPartial) return false;
+  e->fraction = c == PairClass::kFullyVisible ? 1.0 : 0.0;
+  e->error = 0.0;
+  return true;
+}
+
 VisibilityEstimate CgalVisibility::estimate(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b,
                                             int samples, std::uint64_t seed) const {
   VisibilityEstimate e;
-  e.pair_class = classify(a, patch_a, b, patch_b);
-  switch (e.pair_class) {
-    case PairClass::kFacingAway:
-    case PairClass::kFullyHidden:
-      e.fraction = 0.0;
-      e.error = 0.0;
-      return e;
-    case PairClass::kFullyVisible:
-      e.fraction = 1.0;
-      e.error = 0.0;
-      return e;
-    case PairClass::kPartial:
-      break;
-  }
+  if (settled(classify(a, patch_a, b, patch_b), &e)) return e;
   // Only mutually facing point pairs count: (a, b) has positive cosines at both ends iff b lies
   // strictly in front of A's plane and a strictly in front of B's plane, so these pairs form the
   // product of the two clipped polygons; rejection keeps every test exact.
@@ -1131,20 +1128,7 @@ VisibilityEstimate CgalVisibility::estimate_from_point(const Vec3& x, int patch_
   counters().point_queries.fetch_add(1, std::memory_order_relaxed);
   VisibilityEstimate e;
   const Point px = to_point(x);
-  e.pair_class = classify_corners(std::span<const Point>(&px, 1), patch_x, corners(b), patch_b);
-  switch (e.pair_class) {
-    case PairClass::kFacingAway:
-    case PairClass::kFullyHidden:
-      e.fraction = 0.0;
-      e.error = 0.0;
-      return e;
-    case PairClass::kFullyVisible:
-      e.fraction = 1.0;
-      e.error = 0.0;
-      return e;
-    case PairClass::kPartial:
-      break;
-  }
+  if (settled(classify_corners(std::span<const Point>(&px, 1), patch_x, corners(b), patch_b), &e)) return e;
   detail::Rng rng(seed);
   std::vector<Vec2> ub;
   detail::stratified_unit_square(samples, rng, &ub);
