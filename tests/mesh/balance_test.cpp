@@ -1,6 +1,6 @@
 // ElementHierarchy::balance() against the restricted quadtree's definition, checked by brute force
 // on the leaves' geometry (every corner of every coplanar leaf against every leaf edge), independent
-// of the point grid the balance and the output mesh use; and the output mesh of balanced leaves is
+// of the half-edge mesh the balance and the output mesh read; and the output mesh of balanced leaves is
 // crack-free: every output vertex lying inside another face's edge is a vertex of that face.
 #include "hrad/mesh/element_hierarchy.h"
 

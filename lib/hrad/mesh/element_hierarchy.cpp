@@ -5,10 +5,12 @@
 #include <cmath>
 
 #include "hrad/geometry/polygon.h"
+#include "hrad/mesh/detail/leaf_mesh.h"
 
 namespace hrad {
 
-ElementHierarchy::ElementHierarchy(const Scene& scene) : patch_count_(static_cast<int>(scene.patches.size())) {
+ElementHierarchy::ElementHierarchy(const Scene& scene, double weld_tolerance)
+    : patch_count_(static_cast<int>(scene.patches.size())) {
   nodes_.reserve(scene.patches.size());
   for (std::size_t p = 0; p < scene.patches.size(); ++p) {
     const Patch& patch = scene.patches[p];
@@ -24,6 +26,19 @@ ElementHierarchy::ElementHierarchy(const Scene& scene) : patch_count_(static_cas
     n.radiosity = m.emission;
     nodes_.push_back(n);
   }
+  mesh_ = std::make_unique<detail::LeafMesh>(nodes_, weld_tolerance);
+}
+
+ElementHierarchy::~ElementHierarchy() = default;
+ElementHierarchy::ElementHierarchy(ElementHierarchy&& other) noexcept = default;
+ElementHierarchy& ElementHierarchy::operator=(ElementHierarchy&& other) noexcept = default;
+ElementHierarchy::ElementHierarchy(const ElementHierarchy& other)
+    : nodes_(other.nodes_),
+      patch_count_(other.patch_count_),
+      mesh_(other.mesh_ ? std::make_unique<detail::LeafMesh>(*other.mesh_) : nullptr) {}
+ElementHierarchy& ElementHierarchy::operator=(const ElementHierarchy& other) {
+  if (this != &other) *this = ElementHierarchy(other);
+  return *this;
 }
 
 NodeId ElementHierarchy::split(NodeId id) {
@@ -63,6 +78,7 @@ NodeId ElementHierarchy::split(NodeId id) {
     nodes_.push_back(n);
   }
   node(id).first_child = first;
+  mesh_->split(id, first);
   return first;
 }
 

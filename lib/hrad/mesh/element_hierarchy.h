@@ -1,11 +1,15 @@
-// The element hierarchy: one quadtree per patch, stored in one arena of nodes addressed by index.
-// Solvers refine it (uniformly for full matrix and substructuring, adaptively for hierarchical
-// radiosity) and keep their per-element unknowns in the nodes; to_solution() turns the leaves into
-// one conforming polygon mesh (built with OpenMesh in the .cpp; no OpenMesh type crosses this header).
+// The element hierarchy: one quadtree per patch, stored in one arena of nodes addressed by index,
+// beside one OpenMesh half-edge mesh whose faces are the current leaves (mesh/detail/leaf_mesh.h):
+// a split cuts the leaf's face in place, so edge neighbours, T-vertices and vertices shared across
+// patches are the mesh's, from the first split to the output. Solvers refine it (uniformly for full
+// matrix and substructuring, adaptively for hierarchical radiosity) and keep their per-element
+// unknowns in the nodes; to_solution() copies the mesh out as a Solution (no OpenMesh type crosses
+// this header).
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -14,6 +18,10 @@
 #include "hrad/core/types.h"
 
 namespace hrad {
+
+namespace detail {
+class LeafMesh;
+}
 
 /// Index of a node in ElementHierarchy's arena. Stable across split() (the arena only grows).
 using NodeId = std::int32_t;
@@ -44,8 +52,16 @@ struct ElementNode {
 class ElementHierarchy {
  public:
   /// One root per patch of `scene`, with the patch's polygon, area, emission and reflectance.
-  /// Radiosity starts at the emission; gathered at 0.
-  explicit ElementHierarchy(const Scene& scene);
+  /// Radiosity starts at the emission; gathered at 0. The roots' corners are welded into the mesh's
+  /// vertices once, here: `weld_tolerance` (scene units; 0 = 1e-9 times the scene's bounding-box
+  /// diagonal, at most 1e-3 of the shortest patch edge) decides when two corners are one vertex and
+  /// when a corner lies on another patch's edge.
+  explicit ElementHierarchy(const Scene& scene, double weld_tolerance = 0.0);
+  ~ElementHierarchy();
+  ElementHierarchy(const ElementHierarchy& other);
+  ElementHierarchy& operator=(const ElementHierarchy& other);
+  ElementHierarchy(ElementHierarchy&& other) noexcept;
+  ElementHierarchy& operator=(ElementHierarchy&& other) noexcept;
 
   std::size_t size() const { return nodes_.size(); }
   int patch_count() const { return patch_count_; }
@@ -59,6 +75,8 @@ class ElementHierarchy {
   /// its edge midpoints (the middle child is the triangle of the three midpoints). Children inherit
   /// emission, reflectance and radiosity; their areas sum to the parent's (to rounding).
   /// Child k of a quad keeps parent vertex k as its vertex k, so each child is counter-clockwise.
+  /// The leaf's face is cut in place; an edge the neighbour across has split already gives its
+  /// midpoint vertex, otherwise the new midpoint joins the neighbour's face as its T-vertex.
   NodeId split(NodeId id);
 
   /// The leaves of one patch's tree in depth-first order (children in index order).
@@ -75,22 +93,23 @@ class ElementHierarchy {
   void subdivide_uniform(NodeId id, double max_area);
 
   /// Balances the leaves as a restricted quadtree (Von Herzen & Barr 1987; Baum, Mann, Smith &
-  /// Winget 1991 sec. 4): splits every leaf one of whose edges holds two or more corners of other
-  /// leaves in its plane group (a neighbour at least two levels finer), until none does. Then each
-  /// leaf edge holds at most one T-vertex, so the output mesh has no long T-edges. Splits across
-  /// patches too (coplanar patches of one material meeting at T-junctions). Returns the splits.
-  /// `weld_tolerance` as for to_solution().
-  std::size_t balance(double weld_tolerance = 0.0);
+  /// Winget 1991 sec. 4): splits every leaf one of whose edges holds two or more corners of the
+  /// leaves across it in its plane group (a neighbour at least two levels finer; read off the
+  /// face's half-edge loop), until none does. Then each leaf edge holds at most one T-vertex, so the
+  /// output mesh has no long T-edges. Splits across patches too (coplanar patches of one material
+  /// meeting at T-junctions). Returns the splits.
+  std::size_t balance();
 
   /// Sets each interior node's radiosity to the area average of its children, bottom-up
   /// (the "pull" of push-pull; Hanrahan, Salzman & Aupperle 1991, sec. 4).
   void pull_radiosity();
 
-  /// The leaves as one conforming polygon mesh (an OpenMesh PolyMesh inside):
-  ///  * faces are the leaves in all_leaves() order, with face_patch and face_radiosity;
+  /// The leaves as one conforming polygon mesh, copied from the half-edge mesh:
+  ///  * faces are the leaves in all_leaves() order, each its face's loop from corner 0, with
+  ///    face_patch and face_radiosity;
   ///  * T-vertices (a leaf vertex lying on the open edge of a larger neighbouring leaf, on the same
-  ///    patch or across patches that meet there) are inserted into that leaf's polygon, so every
-  ///    leaf vertex lying on another leaf's edge is a vertex of that leaf's polygon: no cracks;
+  ///    patch or across patches that meet there) are in that leaf's loop, so every leaf vertex lying
+  ///    on another leaf's edge is a vertex of that leaf's polygon: no cracks;
   ///  * vertices are shared by the faces that lie in one plane; where the plane changes (a crease,
   ///    e.g. floor and wall) each side keeps its own copy of the vertex, so colours do not bleed
   ///    around corners;
@@ -99,19 +118,18 @@ class ElementHierarchy {
   ///    usable: automatic preprocessing and meshing techniques for the generation of accurate
   ///    radiosity solutions" (anchoring of T-vertices, sec. 4), so smooth display shows no cracks;
   ///  * patch_radiosity is the area-weighted mean of each patch's leaves.
-  /// `weld_tolerance` (scene units; 0 = 1e-9 times the scene's bounding-box diagonal) decides when
-  /// two vertices are the same point and when a vertex lies on an edge.
   ///
   /// `point_radiosity`, when not empty, holds per node (by id) a leaf's radiosity at the corner,
   /// edge-midpoint and centre points of formfactor/simpson_rule.h (a solver that knows B to second
   /// order over each leaf); a leaf then contributes its value at the vertex to the vertex's mean (at
   /// a T-vertex, the quadratic along the edge through its ends and midpoint) instead of its
   /// constant.
-  Solution to_solution(double weld_tolerance = 0.0, std::span<const std::array<Rgb, 9>> point_radiosity = {}) const;
+  Solution to_solution(std::span<const std::array<Rgb, 9>> point_radiosity = {}) const;
 
  private:
   std::vector<ElementNode> nodes_;
   int patch_count_ = 0;
+  std::unique_ptr<detail::LeafMesh> mesh_;
 };
 
 }  // namespace hrad

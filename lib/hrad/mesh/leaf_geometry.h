@@ -1,6 +1,6 @@
-// Geometry shared by the passes over an ElementHierarchy's leaves (leaf_mesh.cpp's output mesh,
-// balance.cpp's restricted quadtree): welding corners into positions, finding the positions inside a
-// leaf's edge, and the plane groups whose leaves share vertices. Internal to the mesh module.
+// The geometry that builds the leaf mesh from the patches, once (leaf_mesh.cpp): welding the
+// patches' corners into positions, finding the positions inside a patch's edge (T-junctions between
+// patches), and the plane groups whose leaves share output vertices. Internal to the mesh module.
 #pragma once
 
 #include <algorithm>
@@ -132,27 +132,27 @@ inline std::vector<int> plane_groups(const std::vector<ElementNode>& roots, doub
   return group;
 }
 
-/// The weld tolerance and grid cell for the leaves `leaf_ids` (not empty): `weld_tolerance`, or 0 for
-/// 1e-9 of the roots' bounding-box diagonal but never more than 1e-3 of the shortest leaf edge (a
-/// 1e-6 element in a 1 km room, diagonal 1.7 km, collapsed to a point under 1.7e-6); the cell is the
-/// median leaf edge (welding merges corners that are one point up to rounding, ~1e-16 of the
+/// The weld tolerance and grid cell for the patches' polygons `roots` (not empty): `weld_tolerance`,
+/// or 0 for 1e-9 of their bounding-box diagonal but never more than 1e-3 of the shortest patch edge
+/// (a 1e-6 patch in a 1 km room, diagonal 1.7 km, collapsed to a point under 1.7e-6); the cell is the
+/// median patch edge (welding merges corners that are one point up to rounding, ~1e-16 of the
 /// coordinates).
-inline std::pair<double, double> weld_scale(const ElementHierarchy& h, const std::vector<NodeId>& leaf_ids,
-                                            double weld_tolerance) {
+inline std::pair<double, double> weld_scale(const std::vector<ElementNode>& roots, double weld_tolerance) {
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-  for (int p = 0; p < h.patch_count(); ++p)
-    for (const Vec3& v : h.node(h.root(p)).polygon()) {
+  std::vector<double> edge_lengths;
+  edge_lengths.reserve(roots.size() * 4);
+  for (const ElementNode& r : roots)
+    for (int k = 0; k < r.vertex_count; ++k) {
+      const Vec3& v = r.vertices[static_cast<std::size_t>(k)];
       lo = lo.cwiseMin(v);
       hi = hi.cwiseMax(v);
+      const double length = (r.vertices[static_cast<std::size_t>((k + 1) % r.vertex_count)] - v).norm();
+      if (length > 0.0) edge_lengths.push_back(length);
     }
   const double diagonal = (hi - lo).norm();
-  std::vector<double> edge_lengths;
-  edge_lengths.reserve(leaf_ids.size());
-  for (NodeId id : leaf_ids) edge_lengths.push_back((h.node(id).vertices[1] - h.node(id).vertices[0]).norm());
+  if (edge_lengths.empty()) edge_lengths.push_back(diagonal > 0.0 ? diagonal : 1.0);
   const double shortest_edge = *std::min_element(edge_lengths.begin(), edge_lengths.end());
-  const double tol = weld_tolerance > 0.0
-                         ? weld_tolerance
-                         : std::min(1e-9 * diagonal, shortest_edge > 0.0 ? 1e-3 * shortest_edge : INFINITY);
+  const double tol = weld_tolerance > 0.0 ? weld_tolerance : std::min(1e-9 * diagonal, 1e-3 * shortest_edge);
   std::nth_element(edge_lengths.begin(), edge_lengths.begin() + edge_lengths.size() / 2, edge_lengths.end());
   return {tol, std::max(edge_lengths[edge_lengths.size() / 2], 4.0 * tol)};
 }

@@ -1,159 +1,229 @@
-// ElementHierarchy::to_solution(): the leaves as one conforming OpenMesh polygon mesh.
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <map>
-#include <unordered_map>
+// detail::LeafMesh: the leaves as the faces of one OpenMesh half-edge mesh, cut in place by splits.
+#include "hrad/mesh/detail/leaf_mesh.h"
 
-#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <cassert>
+
 #include <OpenMesh/Core/System/omstream.hh>
 
-#include "hrad/mesh/element_hierarchy.h"
 #include "hrad/mesh/leaf_geometry.h"
 
-namespace hrad {
+namespace hrad::detail {
 namespace {
 
-struct LeafMeshTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-};
-using LeafMesh = OpenMesh::PolyMesh_ArrayKernelT<LeafMeshTraits>;
+using VertexHandle = PolyMesh::VertexHandle;
+using HalfedgeHandle = PolyMesh::HalfedgeHandle;
+using FaceHandle = PolyMesh::FaceHandle;
+
+PolyMesh::Point point_of(const Vec3& p) { return PolyMesh::Point(p.x(), p.y(), p.z()); }
 
 }  // namespace
 
-Solution ElementHierarchy::to_solution(double weld_tolerance,
-                                       std::span<const std::array<Rgb, 9>> point_radiosity) const {
-  Solution out;
-  const std::vector<NodeId> leaf_ids = all_leaves();
-  if (leaf_ids.empty()) return out;
+LeafMesh::LeafMesh(const std::vector<ElementNode>& roots, double weld_tolerance) {
+  mesh_.add_property(node_of_face_);
+  face_of_node_.assign(roots.size(), -1);
+  corners_.assign(roots.size(), {-1, -1, -1, -1});
+  if (roots.empty()) return;
+  const auto [tol, cell] = weld_scale(roots, weld_tolerance);
+  tolerance_ = tol;
+  group_of_node_ = plane_groups(roots, tol);
 
-  const auto [tol, cell] = detail::weld_scale(*this, leaf_ids, weld_tolerance);
-
-  // 1. Weld the leaves' corners into positions.
-  detail::PointGrid grid(cell, tol);
-  std::vector<std::vector<int>> corners(leaf_ids.size());
-  for (std::size_t f = 0; f < leaf_ids.size(); ++f)
-    for (const Vec3& v : node(leaf_ids[f]).polygon()) corners[f].push_back(grid.weld(v));
-
-  // 2. Insert T-vertices: every position lying inside a leaf edge becomes a vertex of that leaf.
-  //    Each vertex of a leaf's polygon remembers its edge k and where along it (t from corner k).
-  std::vector<std::vector<int>> polygons(leaf_ids.size());
-  std::vector<std::vector<std::pair<int, double>>> along(leaf_ids.size());
-  for (std::size_t f = 0; f < leaf_ids.size(); ++f) {
-    const std::vector<int>& c = corners[f];
-    for (std::size_t k = 0; k < c.size(); ++k) {
-      const int a = c[k], b = c[(k + 1) % c.size()];
-      if (a == b) continue;  // collapsed corner (element smaller than the weld tolerance)
-      polygons[f].push_back(a);
-      along[f].emplace_back(static_cast<int>(k), 0.0);
-      const Vec3 pa = grid.point(a), ab = grid.point(b) - pa;
-      for (int t : grid.on_segment(a, b)) {
-        polygons[f].push_back(t);
-        along[f].emplace_back(static_cast<int>(k), (grid.point(t) - pa).dot(ab) / ab.squaredNorm());
-      }
-    }
-  }
-
-  // 3. One vertex per (plane group, position).
-  std::vector<ElementNode> roots(nodes_.begin(), nodes_.begin() + patch_count_);
-  const std::vector<int> group = detail::plane_groups(roots, tol);
-  std::map<std::pair<int, int>, int> vertex_of;  // (group, position) -> key index
-  std::vector<int> key_position;
-  std::vector<std::vector<int>> face_keys(leaf_ids.size());
-  for (std::size_t f = 0; f < leaf_ids.size(); ++f) {
-    const int g = group[static_cast<std::size_t>(node(leaf_ids[f]).patch)];
-    for (int pos : polygons[f]) {
-      auto [it, inserted] = vertex_of.try_emplace({g, pos}, static_cast<int>(key_position.size()));
-      if (inserted) key_position.push_back(pos);
-      face_keys[f].push_back(it->second);
-    }
-  }
-
-  // 4. The OpenMesh half-edge mesh. A face that would make an edge non-manifold (overlapping or
-  //    folded input) gets its own copies of its vertices, so the mesh stays a valid half-edge mesh.
-  LeafMesh mesh;
-  std::vector<LeafMesh::VertexHandle> handle_of_key(key_position.size());
-  std::vector<int> key_of_vertex;
-  auto add_vertex = [&](int key) {
-    const Vec3& p = grid.point(key_position[static_cast<std::size_t>(key)]);
-    const LeafMesh::VertexHandle vh = mesh.add_vertex(LeafMesh::Point(p.x(), p.y(), p.z()));
-    key_of_vertex.push_back(key);
-    return vh;
+  // One weld of all patches' corners (creases included: floor and wall share the edge they meet
+  // along, so a split on one side puts its midpoint into the other side's loop).
+  PointGrid grid(cell, tol);
+  std::vector<std::array<int, 4>> welded(roots.size());
+  for (std::size_t p = 0; p < roots.size(); ++p)
+    for (int k = 0; k < roots[p].vertex_count; ++k)
+      welded[p][static_cast<std::size_t>(k)] = grid.weld(roots[p].vertices[static_cast<std::size_t>(k)]);
+  std::vector<VertexHandle> vertex_of_position;
+  auto vertex = [&](int position) {
+    if (static_cast<std::size_t>(position) >= vertex_of_position.size())
+      vertex_of_position.resize(static_cast<std::size_t>(position) + 1);
+    VertexHandle& v = vertex_of_position[static_cast<std::size_t>(position)];
+    if (!v.is_valid()) v = mesh_.add_vertex(point_of(grid.point(position)));
+    return v;
   };
-  for (std::size_t k = 0; k < key_position.size(); ++k) handle_of_key[k] = add_vertex(static_cast<int>(k));
+
   const bool om_errors = omerr().is_enabled();
-  omerr().disable();  // complex-edge messages are handled below
-  out.faces.resize(leaf_ids.size());
-  std::vector<std::size_t> face_leaf;  // OpenMesh face index -> leaf index (degenerate leaves are left out)
-  std::vector<std::vector<LeafMesh::VertexHandle>> face_vertices(leaf_ids.size());
-  for (std::size_t f = 0; f < leaf_ids.size(); ++f) {
-    std::vector<LeafMesh::VertexHandle> vhs;
-    for (int key : face_keys[f]) vhs.push_back(handle_of_key[static_cast<std::size_t>(key)]);
-    LeafMesh::FaceHandle fh;
-    if (vhs.size() >= 3) fh = mesh.add_face(vhs);
-    if (!fh.is_valid() && vhs.size() >= 3) {
-      for (std::size_t k = 0; k < vhs.size(); ++k) vhs[k] = add_vertex(face_keys[f][k]);
-      fh = mesh.add_face(vhs);
+  omerr().disable();  // complex edges (overlapping input) are handled below
+  for (std::size_t p = 0; p < roots.size(); ++p) {
+    const int n = roots[p].vertex_count;
+    const std::array<int, 4>& c = welded[p];
+    bool distinct = true;
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j)
+        distinct = distinct && c[static_cast<std::size_t>(i)] != c[static_cast<std::size_t>(j)];
+    if (!distinct) continue;  // a patch smaller than the weld tolerance: no face, no neighbours
+    // The loop: each corner, then the welded positions inside the edge to the next (T-junctions).
+    std::vector<int> loop;
+    std::vector<int> corner_at;  // index into loop of corner k
+    for (int k = 0; k < n; ++k) {
+      const int a = c[static_cast<std::size_t>(k)], b = c[static_cast<std::size_t>((k + 1) % n)];
+      corner_at.push_back(static_cast<int>(loop.size()));
+      loop.push_back(a);
+      for (int t : grid.on_segment(a, b)) loop.push_back(t);
     }
-    if (fh.is_valid()) face_leaf.push_back(f);
-    for (const LeafMesh::VertexHandle& vh : vhs) out.faces[f].push_back(vh.idx());
-    face_vertices[f] = vhs;
+    std::vector<VertexHandle> vhs;
+    for (int position : loop) vhs.push_back(vertex(position));
+    FaceHandle f = mesh_.add_face(vhs);
+    if (!f.is_valid()) {
+      for (std::size_t k = 0; k < vhs.size(); ++k) vhs[k] = mesh_.add_vertex(point_of(grid.point(loop[k])));
+      f = mesh_.add_face(vhs);
+    }
+    if (!f.is_valid()) continue;
+    std::array<VertexHandle, 4> corners;
+    for (int k = 0; k < n; ++k)
+      corners[static_cast<std::size_t>(k)] = vhs[static_cast<std::size_t>(corner_at[static_cast<std::size_t>(k)])];
+    set_node(static_cast<NodeId>(p), f, corners);
   }
   if (om_errors) omerr().enable();
-
-  // 5. Vertex radiosity: area-weighted mean of the faces around each (group, position), counting
-  //    the larger face a T-vertex was inserted into (anchoring; Baum et al. 1991).
-  //    With point_radiosity, each leaf contributes its own value at the vertex.
-  std::vector<Rgb> sum(key_position.size(), Rgb::Zero());
-  std::vector<double> weight(key_position.size(), 0.0);
-  for (const LeafMesh::FaceHandle fh : mesh.faces()) {
-    const std::size_t f = face_leaf[static_cast<std::size_t>(fh.idx())];
-    const NodeId id = leaf_ids[f];
-    const ElementNode& e = node(id);
-    for (std::size_t j = 0; j < face_vertices[f].size(); ++j) {
-      const int key = key_of_vertex[static_cast<std::size_t>(face_vertices[f][j].idx())];
-      Rgb value = e.radiosity;
-      if (!point_radiosity.empty()) {
-        // The leaf's quadratic along edge k through corner k, the edge's midpoint and corner k + 1.
-        const std::array<Rgb, 9>& v = point_radiosity[static_cast<std::size_t>(id)];
-        const auto [k, t] = along[f][j];
-        const int n = e.vertex_count;
-        value = 2.0 * (t - 0.5) * (t - 1.0) * v[static_cast<std::size_t>(k)] -
-                4.0 * t * (t - 1.0) * v[static_cast<std::size_t>(n + k)] +
-                2.0 * t * (t - 0.5) * v[static_cast<std::size_t>((k + 1) % n)];
-      }
-      sum[static_cast<std::size_t>(key)] += e.area * value;
-      weight[static_cast<std::size_t>(key)] += e.area;
-    }
-  }
-
-  out.vertices.resize(mesh.n_vertices());
-  out.vertex_radiosity.resize(mesh.n_vertices());
-  for (const LeafMesh::VertexHandle vh : mesh.vertices()) {
-    const LeafMesh::Point& p = mesh.point(vh);
-    const std::size_t i = static_cast<std::size_t>(vh.idx());
-    out.vertices[i] = Vec3(p[0], p[1], p[2]);
-    const int key = key_of_vertex[i];
-    out.vertex_radiosity[i] = weight[static_cast<std::size_t>(key)] > 0.0
-                                  ? Rgb(sum[static_cast<std::size_t>(key)] / weight[static_cast<std::size_t>(key)])
-                                  : Rgb::Zero();
-  }
-
-  out.face_patch.resize(leaf_ids.size());
-  out.face_radiosity.resize(leaf_ids.size());
-  std::vector<Rgb> patch_sum(static_cast<std::size_t>(patch_count_), Rgb::Zero());
-  std::vector<double> patch_area(static_cast<std::size_t>(patch_count_), 0.0);
-  for (std::size_t f = 0; f < leaf_ids.size(); ++f) {
-    const ElementNode& e = node(leaf_ids[f]);
-    out.face_patch[f] = e.patch;
-    out.face_radiosity[f] = e.radiosity;
-    patch_sum[static_cast<std::size_t>(e.patch)] += e.area * e.radiosity;
-    patch_area[static_cast<std::size_t>(e.patch)] += e.area;
-  }
-  out.patch_radiosity.resize(static_cast<std::size_t>(patch_count_));
-  for (std::size_t p = 0; p < patch_sum.size(); ++p)
-    out.patch_radiosity[p] = patch_area[p] > 0.0 ? Rgb(patch_sum[p] / patch_area[p]) : Rgb::Zero();
-  return out;
 }
 
-}  // namespace hrad
+void LeafMesh::set_node(NodeId id, FaceHandle f, const std::array<VertexHandle, 4>& corners) {
+  const std::size_t i = static_cast<std::size_t>(id);
+  face_of_node_[i] = f.idx();
+  for (std::size_t k = 0; k < 4; ++k) corners_[i][k] = corners[k].idx();
+  if (f.is_valid()) mesh_.property(node_of_face_, f) = id;
+}
+
+HalfedgeHandle LeafMesh::halfedge_from(FaceHandle f, VertexHandle v) const {
+  for (const HalfedgeHandle h : mesh_.fh_range(f))
+    if (mesh_.from_vertex_handle(h) == v) return h;
+  assert(false && "vertex not in the face's loop");
+  return HalfedgeHandle();
+}
+
+HalfedgeHandle LeafMesh::halfedge_to(FaceHandle f, VertexHandle v) const {
+  for (const HalfedgeHandle h : mesh_.fh_range(f))
+    if (mesh_.to_vertex_handle(h) == v) return h;
+  assert(false && "vertex not in the face's loop");
+  return HalfedgeHandle();
+}
+
+bool LeafMesh::in_loop(FaceHandle f, VertexHandle v) const {
+  for (const HalfedgeHandle h : mesh_.fh_range(f))
+    if (mesh_.to_vertex_handle(h) == v) return true;
+  return false;
+}
+
+HalfedgeHandle LeafMesh::first_halfedge(NodeId id) const { return halfedge_from(face(id), corner(id, 0)); }
+
+// The vertex at the midpoint of the face's edge from corner a to corner b: a vertex of the loop
+// between them (the neighbour across split that edge already), or a new vertex inserted into the
+// edge, which puts it into the neighbour's loop as well.
+VertexHandle LeafMesh::midpoint(FaceHandle f, VertexHandle a, VertexHandle b) {
+  const Vec3 pa = position(a), pb = position(b);
+  const Vec3 mid = (pa + pb) * 0.5;  // as ElementHierarchy::split(): bit-identical from either side
+  const Vec3 d = pb - pa;
+  const double tol = std::min(tolerance_, 1e-3 * d.norm());
+  HalfedgeHandle h = halfedge_from(f, a);
+  for (HalfedgeHandle g = h; mesh_.to_vertex_handle(g) != b; g = mesh_.next_halfedge_handle(g))
+    if ((position(mesh_.to_vertex_handle(g)) - mid).norm() <= tol) return mesh_.to_vertex_handle(g);
+  // The piece of the edge holding the midpoint (T-vertices from input T-junctions may lie anywhere).
+  while (mesh_.to_vertex_handle(h) != b && (position(mesh_.to_vertex_handle(h)) - pa).dot(d) < 0.5 * d.squaredNorm())
+    h = mesh_.next_halfedge_handle(h);
+  const VertexHandle m = mesh_.add_vertex(point_of(mid));
+  mesh_.split(mesh_.edge_handle(h), m);
+  return m;
+}
+
+// Inserts the edge a -> b across face f (both in its loop, not adjacent); returns its halfedge.
+HalfedgeHandle LeafMesh::cut(FaceHandle f, VertexHandle a, VertexHandle b) {
+  return mesh_.insert_edge(halfedge_to(f, a), halfedge_from(f, b));
+}
+
+void LeafMesh::split(NodeId id, NodeId first) {
+  const FaceHandle f = face(id);
+  const std::size_t parent = static_cast<std::size_t>(id);
+  const std::size_t end = static_cast<std::size_t>(first) + 4;
+  if (end > face_of_node_.size()) {
+    face_of_node_.resize(end, -1);
+    corners_.resize(end, {-1, -1, -1, -1});
+    group_of_node_.resize(end, -1);
+  }
+  for (std::size_t i = static_cast<std::size_t>(first); i < end; ++i) group_of_node_[i] = group_of_node_[parent];
+  if (!f.is_valid()) return;
+  const int n = corners_[parent][3] < 0 ? 3 : 4;
+  std::array<VertexHandle, 4> c, m;
+  for (int k = 0; k < n; ++k) c[static_cast<std::size_t>(k)] = corner(id, k);
+  for (int k = 0; k < n; ++k)
+    m[static_cast<std::size_t>(k)] =
+        midpoint(f, c[static_cast<std::size_t>(k)], c[static_cast<std::size_t>((k + 1) % n)]);
+  face_of_node_[parent] = -1;
+
+  // The four child faces, each told apart by the one parent corner its loop holds (the middle
+  // triangle holds none).
+  std::array<FaceHandle, 4> faces;
+  auto other = [&](HalfedgeHandle h, VertexHandle v) {  // the face of the cut holding v, else the other
+    const FaceHandle a = mesh_.face_handle(h), b = mesh_.opposite_face_handle(h);
+    return in_loop(a, v) ? a : b;
+  };
+  if (n == 4) {
+    const HalfedgeHandle across = cut(f, m[0], m[2]);
+    const FaceHandle side1 = other(across, c[1]);
+    const FaceHandle side3 =
+        mesh_.face_handle(across) == side1 ? mesh_.opposite_face_handle(across) : mesh_.face_handle(across);
+    const Vec3 centre = (position(c[0]) + position(c[1]) + position(c[2]) + position(c[3])) * 0.25;
+    const VertexHandle mc = mesh_.add_vertex(point_of(centre));
+    mesh_.split(mesh_.edge_handle(across), mc);
+    const HalfedgeHandle h1 = cut(side1, mc, m[1]);
+    const HalfedgeHandle h3 = cut(side3, mc, m[3]);
+    const std::array<FaceHandle, 4> quadrants{mesh_.face_handle(h1), mesh_.opposite_face_handle(h1),
+                                              mesh_.face_handle(h3), mesh_.opposite_face_handle(h3)};
+    for (const FaceHandle g : quadrants)
+      for (int k = 0; k < 4; ++k)
+        if (in_loop(g, c[static_cast<std::size_t>(k)])) faces[static_cast<std::size_t>(k)] = g;
+    for (int k = 0; k < 4; ++k) {
+      const std::size_t i = static_cast<std::size_t>(k);
+      set_node(first + k, faces[i], {c[i], m[i], mc, m[(i + 3) % 4]});
+    }
+  } else {
+    const HalfedgeHandle h0 = cut(f, m[0], m[2]);
+    const FaceHandle rest0 = other(h0, c[1]);
+    const HalfedgeHandle h1 = cut(rest0, m[1], m[0]);
+    const FaceHandle rest1 = other(h1, c[2]);
+    const HalfedgeHandle h2 = cut(rest1, m[2], m[1]);
+    faces[0] = other(h0, c[0]);
+    faces[1] = other(h1, c[1]);
+    faces[2] = other(h2, c[2]);
+    faces[3] = faces[2] == mesh_.face_handle(h2) ? mesh_.opposite_face_handle(h2) : mesh_.face_handle(h2);
+    const VertexHandle none;
+    set_node(first + 0, faces[0], {c[0], m[0], m[2], none});
+    set_node(first + 1, faces[1], {c[1], m[1], m[0], none});
+    set_node(first + 2, faces[2], {c[2], m[2], m[1], none});
+    set_node(first + 3, faces[3], {m[0], m[1], m[2], none});
+  }
+}
+
+bool LeafMesh::crowded(NodeId id) const {
+  const FaceHandle f = face(id);
+  if (!f.is_valid()) return false;
+  const int group = group_of_node_[static_cast<std::size_t>(id)];
+  const int n = corners_[static_cast<std::size_t>(id)][3] < 0 ? 3 : 4;
+  // Is v a corner of a leaf of this plane group across the piece of edge h?
+  auto corner_across = [&](HalfedgeHandle h, VertexHandle v) {
+    const FaceHandle g = mesh_.opposite_face_handle(h);
+    if (!g.is_valid()) return false;
+    const std::size_t other = static_cast<std::size_t>(node_of(g));
+    if (group_of_node_[other] != group) return false;
+    for (const int c : corners_[other])
+      if (c == v.idx()) return true;
+    return false;
+  };
+  const HalfedgeHandle start = first_halfedge(id);
+  HalfedgeHandle h = start;
+  int k = 0, inside = 0;  // the edge from corner k; corners of finer leaves inside it so far
+  do {
+    const VertexHandle v = mesh_.to_vertex_handle(h);
+    const HalfedgeHandle next = mesh_.next_halfedge_handle(h);
+    if (v == corner(id, (k + 1) % n)) {
+      k = k + 1;
+      inside = 0;
+    } else if ((corner_across(h, v) || corner_across(next, v)) && ++inside > 1) {
+      return true;
+    }
+    h = next;
+  } while (h != start);
+  return false;
+}
+
+}  // namespace hrad::detail

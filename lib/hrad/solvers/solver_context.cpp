@@ -170,7 +170,7 @@ SolveSummary SolverContext::finish(const ElementHierarchy& hierarchy, std::size_
   }
   if (out != nullptr) {
     auto p = phase("output");
-    *out = hierarchy.to_solution(0.0, point_radiosity);
+    *out = hierarchy.to_solution(point_radiosity);
     if (options_.basis == Basis::kLinear && !point_radiosity.empty()) {
       // The leaves' linear fields by their corner values (the first points; faces are in leaf order).
       const std::vector<NodeId> leaves = hierarchy.all_leaves();
