@@ -130,5 +130,45 @@ TEST(LeafMesh, CornellBoxRefinedUnevenlyIsCrackFree) {
   expect_faces_hold_their_boundary(h);
 }
 
+TEST(LeafMesh, NonManifoldInputKeepsEveryLeafAndItsCorners) {
+  // Two floor halves meeting along x = 1, a wall standing on that line (three faces on one edge), and
+  // a copy of the first half lying on it: the faces that cannot join the half-edge mesh get their own
+  // vertices and still split, balance and come out, each with its leaf's corners in order.
+  const Scene s = make_scene({{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},
+                              {{1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}},
+                              {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},
+                              {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}});
+  ElementHierarchy h(s);
+  refine_at_random(h, 120, 7);
+  h.balance();
+  const Solution sol = h.to_solution();
+  const std::vector<NodeId> leaves = h.all_leaves();
+  ASSERT_EQ(sol.faces.size(), leaves.size());
+  for (std::size_t f = 0; f < leaves.size(); ++f) {
+    const ElementNode& e = h.node(leaves[f]);
+    std::size_t next = 0;  // the leaf's corners appear in the face in order, corner 0 first
+    for (const int v : sol.faces[f])
+      if (next < static_cast<std::size_t>(e.vertex_count) &&
+          sol.vertices[static_cast<std::size_t>(v)] == e.vertices[next])
+        ++next;
+    EXPECT_EQ(next, static_cast<std::size_t>(e.vertex_count)) << "face " << f;
+    EXPECT_EQ(sol.vertices[static_cast<std::size_t>(sol.faces[f][0])], e.vertices[0]) << "face " << f;
+  }
+  // The wall, outside the half-edge mesh of the floor, is a conforming mesh of its own: each of its
+  // faces holds the wall's positions on its leaf's boundary (its T-vertices).
+  std::vector<Vec3> wall;
+  for (std::size_t f = 0; f < leaves.size(); ++f)
+    if (sol.face_patch[f] == 2)
+      for (const int v : sol.faces[f]) wall.push_back(sol.vertices[static_cast<std::size_t>(v)]);
+  std::size_t t_vertices = 0;
+  for (std::size_t f = 0; f < leaves.size(); ++f) {
+    if (sol.face_patch[f] != 2) continue;
+    const std::vector<Vec3> expected = boundary_points(wall, h.node(leaves[f]).polygon());
+    ASSERT_EQ(sol.faces[f].size(), expected.size()) << "wall face " << f;
+    t_vertices += expected.size() - static_cast<std::size_t>(h.node(leaves[f]).vertex_count);
+  }
+  EXPECT_GT(t_vertices, 0u);  // the wall's refinement is uneven: the check saw T-vertices
+}
+
 }  // namespace
 }  // namespace hrad
