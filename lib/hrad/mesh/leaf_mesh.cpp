@@ -5,7 +5,7 @@
 
 #include <OpenMesh/Core/System/omstream.hh>
 
-#include "hrad/mesh/leaf_geometry.h"
+#include "hrad/mesh/detail/leaf_geometry.h"
 
 namespace hrad::detail {
 namespace {

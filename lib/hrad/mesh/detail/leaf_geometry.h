@@ -1,6 +1,7 @@
 // The geometry that builds the leaf mesh from the patches, once (leaf_mesh.cpp): welding the
 // patches' corners into positions, finding the positions inside a patch's edge (T-junctions between
-// patches), and the plane groups whose leaves share output vertices. Internal to the mesh module.
+// patches), and the plane groups whose leaves share output vertices. Internal to the mesh module (not
+// installed).
 #pragma once
 
 #include <algorithm>
