@@ -25,7 +25,8 @@
 //   DIR/command.txt     the command that made them
 // --quick runs 3 small settings per parameter (for tests). --no-gather skips the runs' gathers
 // (gathered columns nan); --gather-tolerance T sets their Barnes-Hut tolerance (default 1e-2,
-// lib/hrad/gather/leaf_gather.h). Progress goes to stderr.
+// lib/hrad/gather/leaf_gather.h); hierarchical runs gather through their own links
+// (lib/hrad/gather/link_gather.h) unless --gather-sources all. Progress goes to stderr.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -73,6 +74,7 @@ void add_sweep_command(CLI::App& app) {
     int visibility_samples = 0;
     bool no_gather = false;
     double gather_tolerance = 1e-2;
+    std::string gather_sources = "links";
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("SCENE", args->scene, "Scene file (.obj)")->required();
@@ -100,7 +102,13 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_flag("--no-gather", args->no_gather, "Do not final-gather the runs (error_l2_gathered is nan)");
   cmd->add_option("--gather-tolerance", args->gather_tolerance,
                   "Barnes-Hut tolerance of the runs' final gather, relative to the mean radiosity (default 1e-2)");
+  cmd->add_option("--gather-sources", args->gather_sources,
+                  "What the hierarchical runs gather over: links (their own links' sources) or all (every patch, "
+                  "as the other methods; default links)");
   cmd->callback([args, cmd] {
+    if (args->gather_sources != "links" && args->gather_sources != "all")
+      throw Error(fmt::format("--gather-sources must be links or all, got '{}'", args->gather_sources));
+    if (args->no_gather && cmd->count("--gather-sources")) throw Error("--gather-sources: not with --no-gather");
     if (!(args->gather_tolerance >= 0.0 && std::isfinite(args->gather_tolerance)))
       throw Error(fmt::format("--gather-tolerance: {} is not a finite number >= 0", args->gather_tolerance));
     if (args->no_gather && cmd->count("--gather-tolerance")) throw Error("--gather-tolerance: not with --no-gather");
@@ -163,6 +171,7 @@ void add_sweep_command(CLI::App& app) {
     options.visibility_samples = args->visibility_samples;
     options.gather_runs = !args->no_gather;
     options.gather_tolerance = args->gather_tolerance;
+    options.gather_through_links = args->gather_sources == "links";
     if (!(args->feps_aeps >= 0.0 && args->feps_aeps < 1.0))
       throw Error(fmt::format("--feps-aeps must be in [0, 1), got {}", args->feps_aeps));
     options.feps_aeps_fraction = args->feps_aeps;
@@ -218,6 +227,7 @@ void add_sweep_command(CLI::App& app) {
       if (args->visibility_samples > 0) o << " --visibility-samples " << args->visibility_samples;
       if (args->no_gather) o << " --no-gather";
       if (cmd->count("--gather-tolerance")) o << " --gather-tolerance " << args->gather_tolerance;
+      if (cmd->count("--gather-sources")) o << " --gather-sources " << args->gather_sources;
       // Every other option given, so that the line reruns exactly this sweep.
       if (cmd->count("--samples")) o << " --samples " << args->samples;
       if (cmd->count("--target-error")) o << " --target-error " << args->target_error;

@@ -5,6 +5,7 @@
 //   * BM_GatherPoints: points on every patch (the sweep's error samples), per mode: the image's,
 //     the probes' (classified, each partly visible node sampled on its own) and leaf by leaf
 //     (tolerance 0, the sweep's reference), with the work per point;
+//   * BM_LinkGatherPoints: the same points gathered through the solve's links (gather/link_gather.h);
 //   * BM_LeafFactors: all leaves' point factors at those points, the plain contour sum against a
 //     relative accuracy of 1e-9 (what the gather gives up by using the plain sum).
 // Run one core at a time and quote ratios from one run:
@@ -20,9 +21,11 @@
 #include "hrad/formfactor/point_to_polygon.h"
 #include "hrad/gather/gathered_image.h"
 #include "hrad/gather/leaf_gather.h"
+#include "hrad/gather/link_gather.h"
 #include "hrad/io/obj_reader.h"
 #include "hrad/render/render.h"
 #include "hrad/solvers/solve.h"
+#include "hrad/solvers/solved_hierarchy.h"
 
 namespace hrad {
 namespace {
@@ -32,22 +35,30 @@ const Scene& cornell() {
   return s;
 }
 
-// Hierarchical radiosity at its defaults (fine = false) or at aeps = total / 20000 (~10k leaves).
-const Solution& solution(bool fine) {
-  static const Solution coarse = [] {
-    Solution s;
-    solve(cornell(), SolveOptions{}, &s);
+// Hierarchical radiosity at its defaults (fine = false) or at aeps = total / 20000 (~10k leaves),
+// with its hierarchy and links (for the gather through them).
+struct Solved {
+  Solution solution;
+  SolvedHierarchy kept;
+};
+
+const Solved& solved(bool fine) {
+  static const Solved coarse = [] {
+    Solved s;
+    solve(cornell(), SolveOptions{}, &s.solution, &s.kept);
     return s;
   }();
-  static const Solution finer = [] {
+  static const Solved finer = [] {
     SolveOptions o;
     o.aeps = cornell().total_area() / 20000;
-    Solution s;
-    solve(cornell(), o, &s);
+    Solved s;
+    solve(cornell(), o, &s.solution, &s.kept);
     return s;
   }();
   return fine ? finer : coarse;
 }
+
+const Solution& solution(bool fine) { return solved(fine).solution; }
 
 std::vector<GatherPoint> surface_points(int per_patch) {
   std::vector<GatherPoint> points;
@@ -100,6 +111,19 @@ void BM_GatherPoints(benchmark::State& state) {
   set_work(state, gather.work(), s.faces.size());
 }
 BENCHMARK(BM_GatherPoints)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kSecond)->Iterations(1);
+
+// The gather through the links (gather/link_gather.h) at the same points as BM_GatherPoints, each
+// partly visible source classified from the point and sampled on its own (the probes' mode):
+// compare its points/s and factors/point with BM_GatherPoints/1.
+void BM_LinkGatherPoints(benchmark::State& state) {
+  tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  const Solved& s = solved(state.range(0) != 0);
+  const LinkGather gather(cornell(), s.kept);
+  const std::vector<GatherPoint> points = surface_points(16);
+  for (auto _ : state) benchmark::DoNotOptimize(gather.gather(points).data());
+  set_work(state, gather.work(), s.solution.faces.size());
+}
+BENCHMARK(BM_LinkGatherPoints)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1);
 
 void BM_LeafFactors(benchmark::State& state) {
   const Solution& s = solution(false);

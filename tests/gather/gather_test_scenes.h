@@ -29,6 +29,18 @@ inline Solution leaves_with(const Scene& scene, double max_area, const std::func
   return s;
 }
 
+/// A square emitter [0, a]^2 at height c facing down (emission (e, 2e, e/2), no reflection) over a
+/// floor patch facing up (reflectance 0.5); nothing occludes, so a point on the floor sees the
+/// square with Howell's factor (B-3 summed over the four rectangles meeting at its foot).
+inline Scene square_emitter_over_floor(double a, double c, double e) {
+  Scene s;
+  s.materials = {material(Rgb::Constant(0.5), Rgb::Zero(), "floor"),
+                 material(Rgb::Zero(), Rgb(e, 2 * e, 0.5 * e), "light")};
+  add_polygon(s, {{-3, 0, -3}, {5, 0, -3}, {5, 0, 5}, {-3, 0, 5}}, Vec3::UnitY(), 0);
+  add_polygon(s, {{0, c, 0}, {a, c, 0}, {a, c, a}, {0, c, a}}, -Vec3::UnitY(), 1);
+  return s;
+}
+
 /// A uniform field: every leaf at `b`.
 inline Solution uniform_leaves(const Scene& scene, double max_area, const Rgb& b) {
   return leaves_with(scene, max_area, [&](const Vec3&, int) { return b; });

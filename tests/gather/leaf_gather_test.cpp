@@ -28,11 +28,7 @@ using test::uniform_leaves;
 // four rectangles that meet at the point's foot (each has the foot at a corner).
 TEST(LeafGather, PointUnderASquareEmitterGathersHowellsFactor) {
   const double a = 2.0, c = 0.75, e = 3.0;
-  Scene s;
-  s.materials = {material(Rgb::Constant(0.5), Rgb::Zero(), "floor"),
-                 material(Rgb::Zero(), Rgb(e, 2 * e, 0.5 * e), "light")};
-  add_polygon(s, {{-3, 0, -3}, {5, 0, -3}, {5, 0, 5}, {-3, 0, 5}}, Vec3::UnitY(), 0);
-  add_polygon(s, {{0, c, 0}, {a, c, 0}, {a, c, a}, {0, c, a}}, -Vec3::UnitY(), 1);
+  const Scene s = test::square_emitter_over_floor(a, c, e);
   const Solution leaves =
       leaves_with(s, 0.05, [&](const Vec3&, int p) { return p == 1 ? Rgb(e, 2 * e, 0.5 * e) : Rgb::Constant(0.1); });
   for (double tolerance : {0.0, 1e-3}) {

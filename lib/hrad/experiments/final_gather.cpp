@@ -5,6 +5,7 @@
 #include <tbb/global_control.h>
 
 #include "hrad/gather/leaf_gather.h"
+#include "hrad/gather/link_gather.h"
 
 namespace hrad {
 
@@ -19,7 +20,15 @@ std::vector<Rgb> final_gather_reflected(const Scene& scene, const Solution& solu
   o.partial = PartialVisibility::per_node;
   o.visibility_samples = options.visibility_samples;
   o.classify_points = true;
-  const LeafGather gather(scene, solution, o);
+  std::unique_ptr<FinalGather> gather;
+  if (options.links != nullptr && options.links->hierarchy != nullptr) {
+    LinkGatherOptions l;
+    l.tolerance = options.tolerance;
+    l.visibility_samples = options.visibility_samples;
+    gather = std::make_unique<LinkGather>(scene, *options.links, l);
+  } else {
+    gather = std::make_unique<LeafGather>(scene, solution, o);
+  }
   std::vector<GatherPoint> at(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     at[i] = {points[i].position, scene.patches[static_cast<std::size_t>(points[i].patch)].normal, points[i].patch};
@@ -29,11 +38,11 @@ std::vector<Rgb> final_gather_reflected(const Scene& scene, const Solution& solu
   if (options.progress) sink = [&](std::string_view) { options.progress(reporter->done(), points.size()); };
   ProgressReporter progress("final gather", points.size(), "points", sink);
   reporter = &progress;
-  std::vector<Rgb> h = gather.gather(at, &progress);
+  std::vector<Rgb> h = gather->gather(at, &progress);
   for (std::size_t i = 0; i < points.size(); ++i)
     h[i] *= scene.material_of(scene.patches[static_cast<std::size_t>(points[i].patch)]).reflectance;
   if (options.progress) options.progress(points.size(), points.size());
-  if (work) *work = gather.work();
+  if (work) *work = gather->work();
   return h;
 }
 

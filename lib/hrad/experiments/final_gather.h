@@ -19,24 +19,28 @@
 #include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
 #include "hrad/gather/final_gather.h"
+#include "hrad/solvers/solved_hierarchy.h"
 
 namespace hrad {
 
 struct FinalGatherOptions {
-  /// Barnes-Hut tolerance of the gather (gather/leaf_gather.h); 0, every leaf on its own, for a
-  /// reference.
+  /// Barnes-Hut tolerance of the gather (gather/leaf_gather.h, gather/link_gather.h below each
+  /// link's source); 0, every leaf on its own, for a reference.
   double tolerance = 0.0;
   /// Stratified points per leaf when the leaf is partly visible from x; leaves classified fully
   /// visible or hidden from x need none.
   int visibility_samples = 64;
   int threads = 0;  ///< 0 = all cores
+  /// A hierarchical solve's hierarchy and links: gather through them (gather/link_gather.h) instead
+  /// of over every patch; null (or another method's solve) gathers over every patch.
+  const SolvedHierarchy* links = nullptr;
   /// Progress: (points done, points in all).
   std::function<void(std::size_t, std::size_t)> progress;
 };
 
 /// The reflected radiosity B(x) - E(x) at each point (samples on the scene's patches), gathered
-/// from `solution`'s leaves (their face_radiosity, emission included). Deterministic. `work`, when
-/// given, receives the gather's work.
+/// from `solution`'s leaves (their face_radiosity, emission included), or through options.links. Deterministic. `work`,
+/// when given, receives the gather's work.
 std::vector<Rgb> final_gather_reflected(const Scene& scene, const Solution& solution,
                                         std::span<const SurfaceSample> points, const FinalGatherOptions& options,
                                         GatherWork* work = nullptr);

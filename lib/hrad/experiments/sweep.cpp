@@ -228,9 +228,10 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
       options.progress(done, static_cast<int>(settings.size()),
                        fmt::format("{} {}={:.4g}", to_string(method), setting.parameter, setting.value));
     Solution solution;
+    SolvedHierarchy kept;
     SolveSummary s;
     try {
-      s = solve(scene, setting.options, &solution);
+      s = solve(scene, setting.options, &solution, gather_runs && options.gather_through_links ? &kept : nullptr);
     } catch (const Error& e) {
       ++done;
       if (options.progress)
@@ -245,6 +246,7 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
       g.tolerance = options.gather_tolerance;
       g.threads = options.threads;
       if (options.visibility_samples > 0) g.visibility_samples = options.visibility_samples;
+      g.links = &kept;
       GatherWork work;
       const Stopwatch watch;
       const std::vector<Rgb> gathered = final_gather_reflected(scene, solution, samples, g, &work);

@@ -105,6 +105,9 @@ struct SweepOptions {
   /// leaf, the runs' visibility samples (64 when visibility_samples is 0).
   bool gather_runs = true;
   double gather_tolerance = 1e-2;
+  /// Hierarchical runs gather through their links (gather/link_gather.h); false: over every patch
+  /// like the other methods (gather/leaf_gather.h).
+  bool gather_through_links = true;
   int threads = 0;
   /// Progress: (runs done, runs in all, what runs now).
   std::function<void(int, int, std::string_view)> progress;

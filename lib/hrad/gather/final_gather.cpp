@@ -11,6 +11,7 @@ GatherWork& GatherWork::operator+=(const GatherWork& o) {
   classifications += o.classifications;
   rays += o.rays;
   exact_regions += o.exact_regions;
+  uncovered += o.uncovered;
   return *this;
 }
 
@@ -23,6 +24,7 @@ GatherWork operator-(GatherWork a, const GatherWork& b) {
   a.classifications -= b.classifications;
   a.rays -= b.rays;
   a.exact_regions -= b.exact_regions;
+  a.uncovered -= b.uncovered;
   return a;
 }
 

@@ -42,6 +42,7 @@ struct GatherWork {
   std::uint64_t classifications = 0;  ///< from-point visibility classifications (shaft tests)
   std::uint64_t rays = 0;             ///< segment queries for partly visible nodes
   std::uint64_t exact_regions = 0;    ///< exact visible regions computed (VisibilityMode::exact)
+  std::uint64_t uncovered = 0;        ///< link gather: source nodes no link on the point's path covers
   /// One number for cost fits: point factors, classifications and rays.
   std::uint64_t total() const { return node_visits + classifications + rays + exact_regions; }
   GatherWork& operator+=(const GatherWork& o);

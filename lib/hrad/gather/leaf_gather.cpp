@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -12,6 +11,7 @@
 #include "hrad/core/error.h"
 #include "hrad/core/rng.h"
 #include "hrad/formfactor/point_to_polygon.h"
+#include "hrad/gather/from_point.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/visibility/occluded_form_factor.h"
 #include "hrad/visibility/sampling.h"
@@ -40,69 +40,6 @@ namespace {
 constexpr double kFactorTolerance = kLambertSumOnly;
 
 bool is_blocking(PairClass c) { return c == PairClass::kFacingAway || c == PairClass::kFullyHidden; }
-
-std::uint64_t bits_of(double v) {
-  std::uint64_t b = 0;
-  std::memcpy(&b, &v, sizeof b);
-  return b;
-}
-
-// A point's random stream: its coordinates and normal, hashed with the seed.
-std::uint64_t point_seed(const GatherPoint& p, std::uint64_t seed) {
-  std::uint64_t h = detail::mix_seed(seed, 0x5eed);
-  for (int c = 0; c < 3; ++c) {
-    h = detail::mix_seed(h, bits_of(p.position[c]));
-    h = detail::mix_seed(h, bits_of(p.normal[c]));
-  }
-  return h;
-}
-
-// Bounds k_min <= k(y) <= k_max of the point-to-area kernel k(y) = (n . d)+ h / |d|^4, d = y - x,
-// over a planar convex polygon at height h > 0 above x along the polygon's normal (so -n_y . d =
-// h for every y): (n . d)+ is linear in y, extreme at the vertices; |d| lies between a lower
-// bound on the distance to the polygon (the larger of h and the distance to the vertices'
-// bounding sphere) and the largest vertex distance.
-std::pair<double, double> kernel_bounds(const Vec3& x, const Vec3& n, std::span<const Vec3> polygon, double h) {
-  Vec3 centre = Vec3::Zero();
-  for (const Vec3& v : polygon) centre += v;
-  centre /= static_cast<double>(polygon.size());
-  double radius = 0.0, r_max = 0.0, s_min = INFINITY, s_max = -INFINITY;
-  for (const Vec3& v : polygon) {
-    radius = std::max(radius, (v - centre).norm());
-    const Vec3 d = v - x;
-    r_max = std::max(r_max, d.norm());
-    const double s = n.dot(d);
-    s_min = std::min(s_min, s);
-    s_max = std::max(s_max, s);
-  }
-  const double r_min = std::max(h, (x - centre).norm() - radius);
-  const double k_max = h * std::max(0.0, s_max) / (r_min * r_min * r_min * r_min);
-  const double k_min = h * std::max(0.0, s_min) / (r_max * r_max * r_max * r_max);
-  return {k_min, k_max};
-}
-
-// The kernel-weighted visible fraction of `polygon` from x over `samples` stratified points
-// (Wallace, Elmquist & Haines 1989): F(x -> polygon) times it estimates the occluded factor.
-double weighted_fraction(const Visibility& visibility, const Vec3& x, const Vec3& nx, int patch_x,
-                         std::span<const Vec3> polygon, const Vec3& ny, int patch_y, const std::vector<int>* occluders,
-                         int samples, std::uint64_t seed, std::vector<Vec2>& uv) {
-  detail::Rng rng(seed);
-  detail::stratified_unit_square(samples, rng, &uv);
-  const detail::PolygonSampler sampler(polygon);
-  double weight = 0.0, visible = 0.0;
-  int seen = 0;
-  for (const Vec2& u : uv) {
-    const Vec3 y = sampler.point(u.x(), u.y());
-    const double k = detail::point_pair_kernel(nx, ny, y - x);
-    const bool open = occluders ? !visibility.segment_blocked_among(x, patch_x, y, patch_y, *occluders)
-                                : !visibility.segment_blocked(x, patch_x, y, patch_y);
-    weight += k;
-    visible += open ? k : 0.0;
-    seen += open ? 1 : 0;
-  }
-  if (!(weight > 0.0)) return uv.empty() ? 1.0 : double(seen) / static_cast<double>(uv.size());
-  return visible / weight;
-}
 
 }  // namespace
 
@@ -163,7 +100,7 @@ const LeafGather::Pair& LeafGather::pair(int receiver, int source) const {
 Rgb LeafGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w, double* bound) const {
   const Vec3& x = p.position;
   const Vec3& n = p.normal;
-  const std::uint64_t seed = point_seed(p, options_.seed);
+  const std::uint64_t seed = detail::point_seed(p, options_.seed);
   const bool sampled = options_.visibility == VisibilityMode::sampled;
   const bool shared = sampled && options_.partial == PartialVisibility::shared;
   const double tolerance = options_.tolerance * mean_radiosity_;
@@ -228,7 +165,7 @@ Rgb LeafGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w, do
         if (deviation == 0.0) {
           whole = true;  // one radiosity over the node: gathering it whole is exact
         } else {
-          auto [k_min, k_max] = kernel_bounds(x, n, polygon, source.normal.dot(x - polygon[0]));
+          auto [k_min, k_max] = detail::kernel_bounds(x, n, polygon, source.normal.dot(x - polygon[0]));
           if (c == PairClass::kPartial) k_min = 0.0;
           // The factor is at most A k_max / pi: where even that fails the test, skip evaluating it.
           if ((k_max - k_min) * deviation <= tolerance * k_max) {
@@ -262,8 +199,8 @@ Rgb LeafGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w, do
         const int k = options_.visibility_samples;
         w.rays += static_cast<std::uint64_t>(k);
         h += factor * node.mean *
-             weighted_fraction(*visibility_, x, n, p.patch, polygon, source.normal, q, occ, k,
-                               detail::mix_seed(seed, static_cast<std::uint64_t>(id)), s.uv);
+             detail::weighted_fraction(*visibility_, x, n, p.patch, polygon, source.normal, q, occ, k,
+                                       detail::mix_seed(seed, static_cast<std::uint64_t>(id)), s.uv);
       } else {
         const double importance = factor * node.mean.sum();
         if (!(importance > 0.0)) return;

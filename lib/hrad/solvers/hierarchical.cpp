@@ -16,6 +16,7 @@
 #include "hrad/solvers/push_pull.h"
 #include "hrad/solvers/refine.h"
 #include "hrad/solvers/refinement_oracle.h"
+#include "hrad/solvers/solved_hierarchy.h"
 #include "hrad/solvers/solver_context.h"
 
 namespace hrad {
@@ -72,7 +73,8 @@ bool uses_clustering(const Scene& scene, const SolveOptions& options) {
   return false;
 }
 
-SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requested, Solution* out) {
+SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requested, Solution* out,
+                                SolvedHierarchy* kept) {
   // Links join elements of very different sizes at coarse levels (a whole floor to a small light),
   // where a fixed receiver quadrature is neither accurate nor reciprocal: the oracle uses the
   // analytic kernel where its own quadratures disagree.
@@ -91,7 +93,9 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   if (!ctx.effects().bounces) {
     ctx.set_direct("nothing reflects: B = E, no links needed");
     if (options.balance) h.balance();
-    return ctx.finish(h, 0, out);
+    SolveSummary summary = ctx.finish(h, 0, out);
+    if (kept != nullptr) *kept = {std::make_unique<ElementHierarchy>(std::move(h)), nullptr, {}};
+    return summary;
   }
   std::unique_ptr<ClusterTree> tree;
   if (uses_clustering(scene, options)) {
@@ -206,6 +210,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
       for (Rgb& b : v) copy_gray(b);
   SolveSummary summary = ctx.finish(h, directed_link_count(links), out, point_radiosity);
   if (out != nullptr) out->link_segments = std::move(segments);
+  if (kept != nullptr) *kept = {std::make_unique<ElementHierarchy>(std::move(h)), std::move(tree), std::move(links)};
   return summary;
 }
 

@@ -51,7 +51,9 @@ bool uses_clustering(const Scene& scene, const SolveOptions& options);
 /// `out` (if not null). Summary: links counts directed links (each stored interaction is gathered
 /// both ways and counts twice, as the n^2 of the full matrix counts both directions); work as
 /// counted; figures "feps", "bfeps", "aeps", "refine_passes", "link_pairs", "partial_links",
-/// "cluster_link_pairs", "clusters", "min_element_area", "max_depth".
-SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& options, Solution* out);
+/// "cluster_link_pairs", "clusters", "min_element_area", "max_depth". `kept`, when given, receives
+/// the hierarchy, the cluster tree and the links (solved_hierarchy.h).
+SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& options, Solution* out,
+                                SolvedHierarchy* kept = nullptr);
 
 }  // namespace hrad

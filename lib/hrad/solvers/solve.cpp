@@ -73,7 +73,7 @@ void validate_options(const SolveOptions& o) {
   if (o.threads < 0) throw Error(fmt::format("--threads must be >= 0 (0 = all cores), got {}", o.threads));
 }
 
-SolveSummary solve(const Scene& scene, const SolveOptions& options, Solution* out) {
+SolveSummary solve(const Scene& scene, const SolveOptions& options, Solution* out, SolvedHierarchy* kept) {
   validate_options(options);
   // Before any meshing: refuse what cannot fit or would take days, naming the option to change.
   check_work(estimate_work(scene, options), to_string(options.method), available_memory_bytes());
@@ -86,7 +86,7 @@ SolveSummary solve(const Scene& scene, const SolveOptions& options, Solution* ou
     case Method::kSubstructure:
       return solve_substructuring(scene, options, out);
     case Method::kHierarchical:
-      return solve_hierarchical(scene, options, out);
+      return solve_hierarchical(scene, options, out, kept);
   }
   throw Error("--method: unknown method");
 }

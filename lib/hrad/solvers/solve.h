@@ -152,9 +152,12 @@ struct SolveSummary {
 /// spells it ("--feps must be >= 0, got -1"). NaN and infinities are rejected everywhere.
 void validate_options(const SolveOptions& options);
 
+struct SolvedHierarchy;
+
 /// Solves `scene` with options.method and writes the leaf mesh to `out` (if not null).
-/// Validates the options first.
-SolveSummary solve(const Scene& scene, const SolveOptions& options, Solution* out);
+/// Validates the options first. A hierarchical solve also hands its hierarchy and links to `kept`
+/// when given (solved_hierarchy.h); other methods leave it empty.
+SolveSummary solve(const Scene& scene, const SolveOptions& options, Solution* out, SolvedHierarchy* kept = nullptr);
 
 std::string_view to_string(Method method);
 std::string_view to_string(Termination termination);
