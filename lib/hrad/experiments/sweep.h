@@ -33,8 +33,9 @@ struct SweepRow {
   double error_l2 = 0.0, error_linf = 0.0;                ///< the constant element field (the unknowns)
   double error_l2_smooth = 0.0, error_linf_smooth = 0.0;  ///< the displayed, vertex-interpolated field
   /// The run's solution final-gathered at the error samples (B - E = rho H from its leaves,
-  /// gather/leaf_gather.h), what a gathered image or a probe shows, against the reference's gather
-  /// at the same samples. NaN where not measured (no gathered reference, or SweepOptions::gather_runs off).
+  /// gather/leaf_gather.h, or through a hierarchical run's links, gather/link_gather.h), what a
+  /// gathered image or a probe shows, against the reference's gather at the same samples. NaN where not measured (no
+  /// gathered reference, or SweepOptions::gather_runs off).
   double error_l2_gathered = std::numeric_limits<double>::quiet_NaN();
   double error_linf_gathered = std::numeric_limits<double>::quiet_NaN();
   double gather_seconds = 0.0;    ///< the gather's own time (quadtrees and points), not in `seconds`
