@@ -364,7 +364,21 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   const double f_pq = exchange * fraction / p.area, f_qp = exchange * fraction / q.area;
   const double err_p = linear_error(sp, f_pq, true, tol_.fields) + disagreement / p.area;
   const double err_q = linear_error(sq, f_qp, true, tol_.fields) + disagreement / q.area;
-  const auto [e_p, e_q] = weighted(c.p, c.q, err_p, err_q);
+  auto [e_p, e_q] = weighted(c.p, c.q, err_p, err_q);
+  if (tol_.fields) {
+    // What p gathers through the link is q's radiosity weighed by the link's field over q (q's
+    // factors towards p, sum_i source_q[i] m_i), which stands for the point kernel towards p. Where
+    // that kernel is peaked over q (q touches or nearly touches p, as a block's face meets the floor
+    // beside it), the field's error relative to its mean, times how far q's radiosity strays from
+    // its weighted mean (at most its a-priori weight), is what p's gather errs by: on the Cornell box
+    // this, not the receiver's field, made the leaves in the blocks' umbras too bright (a darker
+    // strip of q near the contact weighed too little). Only splitting q reduces it.
+    const double relative_q = f_qp > 0.0 ? linear_error(sq, f_qp, true, tol_.fields) / f_qp : 0.0;
+    const double relative_p = f_pq > 0.0 ? linear_error(sp, f_pq, true, tol_.fields) / f_pq : 0.0;
+    const auto [s_p, s_q] = weighted(c.p, c.q, f_pq * relative_q, f_qp * relative_p);
+    if (can_split(c.q)) e_q = std::max(e_q, s_p);
+    if (can_split(c.p)) e_p = std::max(e_p, s_q);
+  }
   if (c.partial) {
     // What giving the whole receiver the link's visible fraction errs, in units of the tolerance:
     // a shadow errs the same way for every source its occluder hides, so these add up on the
