@@ -46,11 +46,10 @@ struct Candidate {
   double f_pq = 0.0;
   double f_qp = 0.0;
   bool partial = false;  ///< linked with a visible fraction strictly between 0 and 1 (or sampled)
-  /// A link with a cluster end: the patches of a cluster p (q) that face the other end but see only
-  /// part of it or nothing (FormFactorEvaluator::shaded_surfaces(); null when none). Each gets and
-  /// shows through the link in proportion to its projected area times the fraction it sees
-  /// (hsa_links.h): a patch that sees nothing of the other end takes no part.
-  std::shared_ptr<const ShadedPatches> hidden_p = nullptr, hidden_q = nullptr;
+  /// A link with a cluster end: the patches of p (of q) that face the other end but see nothing of
+  /// it (sorted patch indices; null when none). They get no share of the link and show nothing
+  /// through it (hsa_links.h).
+  std::shared_ptr<const std::vector<int>> hidden_p = nullptr, hidden_q = nullptr;
   /// A partly visible link's error from giving each side the link's visible fraction, as the
   /// weighted test counts it (1 = the tolerance): what its receiver gathers errs by this much where
   /// the visibility differs from the fraction.
@@ -101,12 +100,15 @@ inline constexpr double kClusterSeparation = 3.0;
 /// radiosity weight (hierarchical_tolerances() and source_weights()); the same for q. This is the
 /// error at receiver points that HSA 1991 sec. 4 asks to bound, in place of their F > feps test,
 /// and it sees both the falloff and shadows across the receiver (Lischinski, Smits & Greenberg
-/// 1994; Holzschuch & Sillion 1998). With bfeps, the source's current radiosity replaces its
-/// weight (HSA sec. 4.2). The link's unoccluded factor comes from the same points (the two sides'
-/// quadratures, reciprocal by construction) or, where they disagree (near field) or the link is
-/// forced at the smallest area, from the analytic kernel. Visibility: each pair is classified with
-/// its parent's occluder list; a partly visible pair's points are classified from their own cones,
-/// and rays sample only the points that see part of the source.
+/// 1994; Holzschuch & Sillion 1998). With the HSA push the source side counts too: p weighs q's
+/// radiosity by the link's field over q, so the field's error relative to its mean over q, times
+/// q's weight, bounds what p's gather errs by where q's radiosity varies; it splits q. With bfeps,
+/// the source's current radiosity replaces its weight (HSA sec. 4.2). The link's unoccluded factor
+/// comes from the same points (the two sides' quadratures, reciprocal by construction) or, where
+/// they disagree (near field) or the link is forced at the smallest area, from the analytic kernel.
+/// Visibility: each pair is classified with its parent's occluder list; a partly visible pair's
+/// points are classified from their own cones, and rays sample only the points that see part of
+/// the source.
 ///
 /// Pairs with a cluster: a pair farther apart than kClusterSeparation times its bounding radii is
 /// linked by a sampled factor (FormFactorEvaluator::sampled(), visibility by rays) when the
