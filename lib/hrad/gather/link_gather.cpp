@@ -167,14 +167,16 @@ PairClass LinkGather::pair_class(std::size_t receiver, std::uint64_t k, GatherWo
   std::atomic<std::uint8_t>& known = pair_class_[k];
   std::uint8_t c = known.load(std::memory_order_relaxed);
   if (c == kUnclassified) {
-    // Deterministic, so two threads that classify the same link at once store the same class.
+    // Deterministic, so two threads that classify the same link at once find the same class; only
+    // the one that stores it counts the classification, so the work counted does not depend on
+    // the threads' timing.
     const ElementHierarchy& h = *solved_.hierarchy;
     const ElementNode& a = h.node(static_cast<NodeId>(receiver));
     const ElementNode& b = h.node(e.node);
     c = static_cast<std::uint8_t>(
         visibility_->classify_among(a.polygon(), a.patch, b.polygon(), b.patch, nullptr, nullptr));
-    ++w.classifications;
-    known.store(c, std::memory_order_relaxed);
+    std::uint8_t expected = kUnclassified;
+    if (known.compare_exchange_strong(expected, c, std::memory_order_relaxed)) ++w.classifications;
   }
   return static_cast<PairClass>(c);
 }
