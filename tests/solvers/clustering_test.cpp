@@ -214,6 +214,50 @@ TEST(ClusterTransfer, SampledFactorIsUnbiasedWithinItsStandardErrorAndReciprocal
   }
 }
 
+// Guarantee: a cluster link shares what it carries among an end's patches as their exact factors
+// to the other end do (within 5% here), where shares by projected area towards the other end's
+// centre are off by more than half (the control). A ceiling lamp beside the top of a wall, far
+// floor tiles level with neither: from the cluster's centre the floor lies almost level with the
+// lamp's plane, but from the lamp itself it lies well below it.
+TEST(ClusterTransfer, LinkWeightsShareAsEachPatchsExactFactor) {
+  Scene s;
+  s.materials = {gray(0.5, 0)};
+  add_polygon(s, {{0, 3, 0}, {1, 3, 0}, {1, 3, 1}, {0, 3, 1}}, -Vec3::UnitY(), 0);     // lamp
+  add_polygon(s, {{0, 0.5, 0}, {0, 3, 0}, {0, 3, 1}, {0, 0.5, 1}}, Vec3::UnitX(), 0);  // wall
+  add_polygon(s, {{9, 0, 0}, {10, 0, 0}, {10, 0, 1}, {9, 0, 1}}, Vec3::UnitY(), 0);    // floor
+  add_polygon(s, {{10, 0, 0}, {11, 0, 0}, {11, 0, 1}, {10, 0, 1}}, Vec3::UnitY(), 0);
+  const ElementHierarchy h(s);
+  const ClusterTree tree(s);
+  const ClusterTransfer transfer(s, h, &tree);
+  const Cluster& root = tree.cluster(0);
+  const NodeRef near = tree.patches(cluster_index(root.children[0]))[0] < 2 ? root.children[0] : root.children[1];
+  const NodeRef far = near == root.children[0] ? root.children[1] : root.children[0];
+  ASSERT_TRUE(is_cluster(near) && is_cluster(far));
+  std::vector<float> q;
+  const double total = transfer.link_weights(near, far, nullptr, &q);
+  const Vec3 d = (transfer.shape(far).centre - transfer.shape(near).centre).normalized();
+  const std::span<const int> patches = tree.patches(cluster_index(near));
+  double exact_total = 0.0;
+  std::vector<double> exact;
+  for (const int j : patches) {
+    double f = 0.0;
+    for (const int b : tree.patches(cluster_index(far)))
+      f += polygon_to_polygon(s.patches[static_cast<std::size_t>(j)].vertices,
+                              s.patches[static_cast<std::size_t>(b)].vertices)
+               .from_to;
+    exact.push_back(s.patches[static_cast<std::size_t>(j)].area * f);
+    exact_total += exact.back();
+  }
+  const double projected = transfer.projected_area(near, d);
+  for (std::size_t k = 0; k < patches.size(); ++k) {
+    const Patch& patch = s.patches[static_cast<std::size_t>(patches[k])];
+    const double truth = exact[k] / exact_total;
+    EXPECT_NEAR(patch.area * q[k] / total / truth, 1.0, 0.05) << patches[k];
+    if (patches[k] == 0)  // the lamp: its projected area towards the centre is far from its share
+      EXPECT_GT(std::abs(patch.area * facing_cosine(patch.normal, d) / projected / truth - 1.0), 0.5);
+  }
+}
+
 // --- Solves -----------------------------------------------------------------------------------------
 
 SolveOptions clustered(SolveOptions o = {}) {

@@ -21,8 +21,9 @@ namespace hrad {
 struct LinkGather::Source {
   NodeRef node = kNoNode;
   bool partial = false;
-  const std::vector<int>* receiver_hidden = nullptr;  ///< patches of a cluster receiver that see nothing of the source
-  const std::vector<int>* source_hidden = nullptr;    ///< patches of a cluster source that see nothing of the receiver
+  const ShadedPatches* receiver_hidden =
+      nullptr;                                   ///< patches of a cluster receiver that see part or none of the source
+  const ShadedPatches* source_hidden = nullptr;  ///< patches of a cluster source that see part or none of the receiver
 };
 
 struct LinkGather::Scratch {
@@ -37,9 +38,8 @@ struct LinkGather::Scratch {
 
 namespace {
 
-bool listed(const std::vector<int>* list, int patch) {
-  return list != nullptr && std::find(list->begin(), list->end(), patch) != list->end();
-}
+// A patch of a cluster end that sees nothing of the other end (Link::hidden_p).
+bool listed(const ShadedPatches* list, int patch) { return !(visible_share(list, patch) > 0.0); }
 
 bool is_blocking(PairClass c) { return c == PairClass::kFacingAway || c == PairClass::kFullyHidden; }
 

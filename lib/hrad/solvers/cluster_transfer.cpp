@@ -6,13 +6,17 @@
 #include <numbers>
 #include <vector>
 
+#include "hrad/formfactor/point_to_sphere.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/visibility/sampling.h"
 
 namespace hrad {
 
 ClusterTransfer::ClusterTransfer(const Scene& scene, const ElementHierarchy& hierarchy, const ClusterTree* tree)
-    : scene_(scene), h_(hierarchy), tree_(tree) {}
+    : scene_(scene), h_(hierarchy), tree_(tree) {
+  centroids_.reserve(scene.patches.size());
+  for (const Patch& p : scene.patches) centroids_.push_back(polygon_centroid(p.vertices));
+}
 
 NodeShape ClusterTransfer::shape(NodeRef r) const {
   NodeShape s;
@@ -61,14 +65,6 @@ bool ClusterTransfer::facing_away(NodeRef p, NodeRef q) const {
   return false;
 }
 
-namespace {
-
-bool listed(const std::vector<int>* patches, int patch) {
-  return patches != nullptr && std::binary_search(patches->begin(), patches->end(), patch);
-}
-
-}  // namespace
-
 bool ClusterTransfer::patches_face_away(NodeRef p, NodeRef q) const {
   auto box = [&](NodeRef r) {
     Eigen::AlignedBox3d b;
@@ -95,27 +91,60 @@ bool ClusterTransfer::patches_face_away(NodeRef p, NodeRef q) const {
   return all_behind(p, q) || all_behind(q, p);
 }
 
-double ClusterTransfer::projected_area(NodeRef r, const Vec3& d, const std::vector<int>* hidden) const {
-  if (is_cluster(r) && hidden == nullptr) return tree_->projected_area(cluster_index(r), d);
-  double sum = 0.0;
-  for (int k = 0, n = patch_count(r); k < n; ++k) {
-    const int patch = is_cluster(r) ? tree_->patches(cluster_index(r))[static_cast<std::size_t>(k)] : h_.node(r).patch;
-    if (listed(hidden, patch)) continue;
-    const double area = is_cluster(r) ? scene_.patches[static_cast<std::size_t>(patch)].area : h_.node(r).area;
-    sum += area * facing_cosine(scene_.patches[static_cast<std::size_t>(patch)].normal, d);
-  }
-  return sum;
+double ClusterTransfer::projected_area(NodeRef r, const Vec3& d) const {
+  if (is_cluster(r)) return tree_->projected_area(cluster_index(r), d);
+  const ElementNode& e = h_.node(r);
+  return e.area * facing_cosine(scene_.patches[static_cast<std::size_t>(e.patch)].normal, d);
 }
 
-double ClusterTransfer::largest_share(NodeRef r, const Vec3& d, const std::vector<int>* hidden) const {
-  double cosine = 0.0;
+double ClusterTransfer::facing_weight(const Patch& patch, const Vec3& at, NodeRef other_end,
+                                      const NodeShape& other) const {
+  const double f = point_to_sphere(at, patch.normal, other.centre, other.radius);
+  if (!(f > 0.0)) return 0.0;
+  // The other end's projected area towards the patch over its largest: its axis sums for a cluster.
+  const Vec3 u = (at - other.centre).normalized();
+  double shows = 0.0;
+  if (is_cluster(other_end)) {
+    const Cluster& c = tree_->cluster(cluster_index(other_end));
+    for (int k = 0; k < 3; ++k) shows += std::abs(u[k]) * (u[k] > 0.0 ? c.axis_plus[k] : c.axis_minus[k]);
+  } else {
+    shows = projected_area(other_end, u);
+  }
+  return other.max_projected_area > 0.0 ? f * shows / other.max_projected_area : 0.0;
+}
+
+double ClusterTransfer::link_weights(NodeRef r, NodeRef other_end, const ShadedPatches* shaded,
+                                     std::vector<float>* per_area) const {
+  const NodeShape other = shape(other_end);
+  double total = 0.0;
   for (int k = 0, n = patch_count(r); k < n; ++k) {
     const int patch = is_cluster(r) ? tree_->patches(cluster_index(r))[static_cast<std::size_t>(k)] : h_.node(r).patch;
-    if (!listed(hidden, patch))
-      cosine = std::max(cosine, facing_cosine(scene_.patches[static_cast<std::size_t>(patch)].normal, d));
+    const Patch& s = scene_.patches[static_cast<std::size_t>(patch)];
+    const double area = is_cluster(r) ? s.area : h_.node(r).area;
+    const Vec3 at =
+        is_cluster(r) ? centroids_[static_cast<std::size_t>(patch)] : polygon_centroid(h_.node(r).polygon());
+    const float q = static_cast<float>(facing_weight(s, at, other_end, other) * visible_share(shaded, patch));
+    per_area->push_back(q);
+    total += area * static_cast<double>(q);
   }
-  const double facing = projected_area(r, d, hidden);
-  return facing > 0.0 ? cosine / facing : INFINITY;
+  return total;
+}
+
+void ClusterTransfer::drop_idle(NodeRef r, NodeRef other_end, ShadedPatches* shaded) const {
+  if (!is_cluster(r)) return;
+  const NodeShape other = shape(other_end);
+  std::erase_if(*shaded, [&](const ShadedPatch& p) {
+    return !(facing_weight(scene_.patches[static_cast<std::size_t>(p.patch)],
+                           centroids_[static_cast<std::size_t>(p.patch)], other_end, other) > 0.0);
+  });
+}
+
+double ClusterTransfer::largest_share(NodeRef r, NodeRef other, const ShadedPatches* shaded) const {
+  thread_local std::vector<float> q;
+  q.clear();
+  const double total = link_weights(r, other, shaded, &q);
+  const float most = q.empty() ? 0.0f : *std::max_element(q.begin(), q.end());
+  return total > 0.0 ? static_cast<double>(most) / total : INFINITY;
 }
 
 int ClusterTransfer::sample(NodeRef r, double w, double u, double v, Vec3* point) const {

@@ -52,14 +52,24 @@ class ClusterTransfer {
   /// The far-field factors without visibility (value F(p -> q), reverse F(q -> p); facing_away
   /// when either side shows no surface to the other).
   FormFactorEstimate far_field(NodeRef p, const NodeShape& sp, NodeRef q, const NodeShape& sq) const;
-  /// Exact projected area of r's surfaces towards the unit direction d (facing_cosine()), without
-  /// the patches in `hidden` (sorted patch indices; null: none).
-  double projected_area(NodeRef r, const Vec3& d, const std::vector<int>* hidden = nullptr) const;
-  /// The largest share per unit area that a link towards d gives a patch of r (hsa_links.h): the
-  /// largest facing_cosine() over r's patches not in `hidden` over their projected area towards d
-  /// (+infinity when none faces d). Times the link's exchange A_r F, the largest factor a patch of
-  /// r receives through it.
-  double largest_share(NodeRef r, const Vec3& d, const std::vector<int>* hidden = nullptr) const;
+  /// Exact projected area of r's surfaces towards the unit direction d (facing_cosine()).
+  double projected_area(NodeRef r, const Vec3& d) const;
+  /// How a cluster link shares what it carries among the patches of its end r (hsa_links.h): per
+  /// patch j of r (in tree order), appended to `per_area`, q_j = F(dA at j's centroid -> the other
+  /// end's bounding sphere) (point_to_sphere()) times the other end's projected area towards j
+  /// over its largest (its axis sums, Cluster::axis_plus: exact for axis-aligned contents) times
+  /// the part of the other end j sees (visible_share() of `shaded`). Patch j takes A_j q_j / W of
+  /// the link, W = sum A_j q_j, which is returned. Unlike projected areas towards the other end's
+  /// centre, this follows each patch's own position, the other end's extent and which way the
+  /// other end faces: a ceiling lamp level with a far cluster's centre still sees its lower half.
+  double link_weights(NodeRef r, NodeRef other, const ShadedPatches* shaded, std::vector<float>* per_area) const;
+  /// Removes from `shaded` the patches of r whose q_j above is 0 whatever they see (facing wholly
+  /// away from the other end's bounding sphere): they take no part in the link anyway.
+  void drop_idle(NodeRef r, NodeRef other, ShadedPatches* shaded) const;
+  /// The largest share per unit area that a link gives a patch of r: the largest q_j over W above
+  /// (+infinity when W is 0). Times the link's exchange A_r F, the largest factor a patch of r
+  /// receives through it.
+  double largest_share(NodeRef r, NodeRef other, const ShadedPatches* shaded) const;
   /// A point uniform by area on r's surfaces; returns its patch.
   int sample(NodeRef r, double w, double u, double v, Vec3* point) const;
   /// The number of patches below r (1 for an element).
@@ -71,6 +81,10 @@ class ClusterTransfer {
   const Scene& scene_;
   const ElementHierarchy& h_;
   const ClusterTree* tree_;
+  /// q_j of link_weights() without visibility, for patch `patch` of area `area` at `at`.
+  double facing_weight(const Patch& patch, const Vec3& at, NodeRef other_end, const NodeShape& other) const;
+
+  std::vector<Vec3> centroids_;  ///< per patch
 };
 
 /// The surfaces below one node, for FormFactorEvaluator::sampled().

@@ -294,28 +294,30 @@ FormFactorEstimate FormFactorEvaluator::sampled(const SurfaceSampler& p, const S
   return e;
 }
 
-std::vector<int> FormFactorEvaluator::hidden_surfaces(const SurfaceSampler& from, const Vec3& d,
-                                                      const SurfaceSampler& to, int rays, std::uint64_t seed) const {
-  std::vector<int> hidden;
+ShadedPatches FormFactorEvaluator::shaded_surfaces(const SurfaceSampler& from, const SurfaceSampler& to, int rays,
+                                                   std::uint64_t seed) const {
+  ShadedPatches shaded;
   detail::Rng rng(seed);
   for (int k = 0; k < from.patch_count(); ++k) {
     Vec3 x, y;
     int px = from.sample_patch(k, 0.5, 0.5, &x);
     const Vec3& nx = scene_.patches[static_cast<std::size_t>(px)].normal;
-    if (!(facing_cosine(nx, d) > 0.0)) continue;  // no share of the link
-    bool seen = false;
-    for (int r = 0; r < rays && !seen; ++r) {
+    double weight = 0.0, seen = 0.0;
+    for (int r = 0; r < rays; ++r) {
       px = from.sample_patch(k, rng.uniform(), rng.uniform(), &x);
       const int py = to.sample(rng.uniform(), rng.uniform(), rng.uniform(), &y);
       if (px == py) continue;
       const Vec3& ny = scene_.patches[static_cast<std::size_t>(py)].normal;
-      if (!(detail::point_pair_kernel(nx, ny, y - x) > 0.0)) continue;
-      seen = !effects_.visibility || visibility_->sight(x, px, y, py) == Sight::kVisible;
+      const double kernel = detail::point_pair_kernel(nx, ny, y - x);
+      if (!(kernel > 0.0)) continue;
+      weight += kernel;
+      if (!effects_.visibility || visibility_->sight(x, px, y, py) == Sight::kVisible) seen += kernel;
     }
-    if (!seen) hidden.push_back(px);
+    if (!(weight > 0.0) || seen < weight)
+      shaded.push_back({px, weight > 0.0 ? static_cast<float>(seen / weight) : 0.0f});
   }
-  std::sort(hidden.begin(), hidden.end());
-  return hidden;
+  std::sort(shaded.begin(), shaded.end());
+  return shaded;
 }
 
 std::uint64_t FormFactorEvaluator::pair_seed(std::span<const Vec3> a, int pa, std::span<const Vec3> b, int pb) const {

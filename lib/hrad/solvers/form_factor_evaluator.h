@@ -2,6 +2,7 @@
 // matrix, substructuring, hierarchical) asks this class for the factor between two elements.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <span>
@@ -68,6 +69,23 @@ class SurfaceSampler {
   /// two numbers in [0, 1); returns that patch.
   virtual int sample_patch(int k, double u, double v, Vec3* point) const = 0;
 };
+
+/// A patch at one end of a cluster link that sees the other end only in part: the kernel-weighted
+/// fraction of the other end it sees (0: nothing). Lists of them are sorted by patch; a patch not
+/// listed sees all of the other end.
+struct ShadedPatch {
+  int patch = -1;
+  float visible = 0.0f;
+  bool operator<(const ShadedPatch& o) const { return patch < o.patch; }
+};
+using ShadedPatches = std::vector<ShadedPatch>;
+
+/// The visible fraction of `patch` in `shaded` (null: none listed): 1 when not listed.
+inline double visible_share(const ShadedPatches* shaded, int patch) {
+  if (shaded == nullptr) return 1.0;
+  const auto it = std::lower_bound(shaded->begin(), shaded->end(), ShadedPatch{patch, 0.0f});
+  return it != shaded->end() && it->patch == patch ? static_cast<double>(it->visible) : 1.0;
+}
 
 /// Kernel-weighted visibility of a polygon from a point (Wallace, Elmquist & Haines 1989): sums over
 /// the rays of the point-to-point kernel cos(theta_x) cos(theta_y) / r^2, and of it where the ray is
@@ -145,13 +163,14 @@ class FormFactorEvaluator {
   /// F(p -> q), reverse F(q -> p), visibility the kernel-weighted visible fraction.
   FormFactorEstimate sampled(const SurfaceSampler& p, const SurfaceSampler& q, int samples, std::uint64_t seed) const;
 
-  /// The patches of `from` that face the direction `d` (facing_cosine() > 0: those a cluster link
-  /// gives a share of what it carries, hsa_links.h) but see no point of `to` along `rays` rays to
-  /// points uniform by area on `to`, visibility decided exactly (Visibility::sight()), sorted. A
-  /// patch behind a closed surface never sees through it, whatever the rays: the link must give
-  /// it nothing.
-  std::vector<int> hidden_surfaces(const SurfaceSampler& from, const Vec3& d, const SurfaceSampler& to, int rays,
-                                   std::uint64_t seed) const;
+  /// The patches of `from` that do not see all of `to`: along `rays` rays from points uniform on
+  /// the patch to points uniform by area on `to`, visibility decided exactly (Visibility::sight()),
+  /// the kernel-weighted visible fraction sum k V / sum k (k the point pair kernel; 0 when no ray
+  /// carries weight), listed when below 1, sorted. A patch behind a closed surface never sees
+  /// through it, whatever the rays: a cluster link must give it nothing; a patch half hidden by
+  /// furniture inside its own cluster must get half of an unobstructed patch's share (hsa_links.h).
+  ShadedPatches shaded_surfaces(const SurfaceSampler& from, const SurfaceSampler& to, int rays,
+                                std::uint64_t seed) const;
 
   /// Deterministic seed for sampling a pair of polygons on patches pa and pb (from their geometry,
   /// relative to their patches: a scaled scene draws the same samples).

@@ -29,11 +29,14 @@ HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, co
   }
   links_.resize(offsets_[n]);
   cluster_links_.resize(cluster_offsets_[n]);
-  receiver_hidden_.resize(cluster_links_.size());
-  source_hidden_.resize(cluster_links_.size());
   std::vector<std::uint64_t> cursor(offsets_.begin(), offsets_.end() - 1);
   std::vector<std::uint64_t> cluster_cursor(cluster_offsets_.begin(), cluster_offsets_.end() - 1);
   auto patches = [&](NodeRef r) { return is_cluster(r) ? tree->patches(cluster_index(r)).size() : std::size_t{0}; };
+  if (tree != nullptr && tree->size() > 0) {
+    position_.assign(scene_.patches.size(), 0);
+    const std::span<const int> all = tree->patches(0);
+    for (std::size_t k = 0; k < all.size(); ++k) position_[static_cast<std::size_t>(all[k])] = static_cast<int>(k);
+  }
   for (const Link& l : links) {
     const std::size_t dp = dense(l.p), dq = dense(l.q);
     if (!with_cluster(l)) {
@@ -54,67 +57,49 @@ HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, co
       if (l.f_qp > 0.0) links_[cursor[dq]++] = directed(dp, l.shape_q, l.source_p, l.f_qp);
       continue;
     }
-    // The direction as stored (in floats) is the one the projected areas are taken towards, so that
-    // the shares of a link sum to what it carries.
-    const Vec3 exact = (geometry.shape(l.q).centre - geometry.shape(l.p).centre).normalized();  // p towards q
-    const std::array<float, 3> to_q = {static_cast<float>(exact.x()), static_cast<float>(exact.y()),
-                                       static_cast<float>(exact.z())};
-    const std::array<float, 3> to_p = {-to_q[0], -to_q[1], -to_q[2]};
-    const Vec3 d(to_q[0], to_q[1], to_q[2]);
-    auto directed = [&](NodeRef receiver, NodeRef source, double f, const std::array<float, 3>& to_source,
-                        const Vec3& towards_source, const std::shared_ptr<const std::vector<int>>& receiver_hidden,
-                        const std::shared_ptr<const std::vector<int>>& source_hidden) {
-      ClusterLink c{static_cast<std::int32_t>(dense(source)), static_cast<float>(f), to_source, 0.0f};
+    // Each cluster end's weights, once for both directions.
+    auto end_weights = [&](NodeRef end, NodeRef other, const ShadedPatches* shaded, std::uint64_t* offset) {
+      *offset = weights_.size();
+      return is_cluster(end) ? geometry.link_weights(end, other, shaded, &weights_) : 0.0;
+    };
+    std::uint64_t q_p = 0, q_q = 0;
+    const double w_p = end_weights(l.p, l.q, l.hidden_p.get(), &q_p);
+    const double w_q = end_weights(l.q, l.p, l.hidden_q.get(), &q_q);
+    auto directed = [&](NodeRef receiver, NodeRef source, double f, double w_receiver, std::uint64_t q_receiver,
+                        double w_source, std::uint64_t q_source) {
+      ClusterLink c{static_cast<std::int32_t>(dense(source)), static_cast<float>(f), 0.0f, q_receiver, q_source};
       if (is_cluster(receiver)) {
-        const double facing = geometry.projected_area(receiver, towards_source, receiver_hidden.get());
-        c.factor = facing > 0.0 ? static_cast<float>(f * geometry.shape(receiver).area / facing) : 0.0f;
+        c.factor = w_receiver > 0.0 ? static_cast<float>(f * geometry.shape(receiver).area / w_receiver) : 0.0f;
         cluster_receivers_ = true;
       }
-      if (is_cluster(source)) {
-        const double shown = geometry.projected_area(source, -towards_source, source_hidden.get());
-        c.source_scale = shown > 0.0 ? static_cast<float>(1.0 / shown) : 0.0f;
-      }
+      if (is_cluster(source)) c.source_scale = w_source > 0.0 ? static_cast<float>(1.0 / w_source) : 0.0f;
       cluster_terms_ += 1 + patches(receiver) + patches(source);
       return c;
     };
-    if (l.f_pq > 0.0) {
-      receiver_hidden_[cluster_cursor[dp]] = l.hidden_p;
-      source_hidden_[cluster_cursor[dp]] = l.hidden_q;
-      cluster_links_[cluster_cursor[dp]++] = directed(l.p, l.q, l.f_pq, to_q, d, l.hidden_p, l.hidden_q);
-    }
-    if (l.f_qp > 0.0) {
-      receiver_hidden_[cluster_cursor[dq]] = l.hidden_q;
-      source_hidden_[cluster_cursor[dq]] = l.hidden_p;
-      cluster_links_[cluster_cursor[dq]++] = directed(l.q, l.p, l.f_qp, to_p, -d, l.hidden_q, l.hidden_p);
-    }
+    if (l.f_pq > 0.0) cluster_links_[cluster_cursor[dp]++] = directed(l.p, l.q, l.f_pq, w_p, q_p, w_q, q_q);
+    if (l.f_qp > 0.0) cluster_links_[cluster_cursor[dq]++] = directed(l.q, l.p, l.f_qp, w_q, q_q, w_p, q_p);
   }
-  for (const Link& l : links)
-    for (const auto* hidden : {l.hidden_p.get(), l.hidden_q.get()})
-      if (hidden != nullptr) hidden_bytes_ += hidden->capacity() * sizeof(int);
   if (cluster_receivers_) carried_.assign(cluster_links_.size(), Rgb::Zero());
 }
 
 std::uint64_t HsaLinks::bytes() const {
   return links_.capacity() * sizeof(DirectedLink) + cluster_links_.capacity() * sizeof(ClusterLink) +
          (offsets_.capacity() + cluster_offsets_.capacity()) * sizeof(std::uint64_t) +
-         carried_.capacity() * sizeof(Rgb) +
-         (receiver_hidden_.capacity() + source_hidden_.capacity()) * sizeof(std::shared_ptr<const std::vector<int>>) +
-         hidden_bytes_;
+         carried_.capacity() * sizeof(Rgb) + weights_.capacity() * sizeof(float) + position_.capacity() * sizeof(int);
 }
 
 Rgb HsaLinks::shown(const NodeField& field, std::uint64_t k) const {
   const ClusterLink& l = cluster_links_[k];
   const std::size_t source = static_cast<std::size_t>(l.source);
-  if (source < elements_) return source_hidden_[k] ? Rgb::Zero() : field.radiosity[source];
-  // A cluster shows towards the receiver (-u) the mean of its patches' radiosity weighted by their
-  // projected areas that way.
-  const std::vector<int>* hidden = source_hidden_[k].get();
+  if (source < elements_) return field.radiosity[source];
+  // A cluster shows the mean of its patches' radiosity by their weights towards the receiver.
+  const float* q = weights_.data() + l.source_q;
   Rgb sum = Rgb::Zero();
   for (const int patch : tree_->patches(static_cast<int>(source - elements_))) {
-    if (hidden != nullptr && std::binary_search(hidden->begin(), hidden->end(), patch)) continue;
-    const Patch& p = scene_.patches[static_cast<std::size_t>(patch)];
-    const double w = facing_cosine(p.normal, Vec3(-l.to_source[0], -l.to_source[1], -l.to_source[2]));
-    if (w > 0.0) sum += (p.area * w) * field.radiosity[static_cast<std::size_t>(h_.root(patch))];
+    const double w = static_cast<double>(*q++);
+    if (w > 0.0)
+      sum += (scene_.patches[static_cast<std::size_t>(patch)].area * w) *
+             field.radiosity[static_cast<std::size_t>(h_.root(patch))];
   }
   return static_cast<double>(l.source_scale) * sum;
 }
@@ -135,7 +120,7 @@ void HsaLinks::gather(NodeField& field) const {
         // An element receives what each source shows towards it.
         Rgb sum = Rgb::Zero();
         for (std::uint64_t k = cluster_offsets_[i]; k < cluster_offsets_[i + 1]; ++k)
-          if (!receiver_hidden_[k]) sum += static_cast<double>(cluster_links_[k].factor) * shown(field, k);
+          sum += static_cast<double>(cluster_links_[k].factor) * shown(field, k);
         add_constant(h, sum);
         continue;
       }
@@ -144,19 +129,17 @@ void HsaLinks::gather(NodeField& field) const {
     }
   });
   if (!cluster_receivers_) return;
-  // Each patch's shares of what its clusters received (Sillion 1995, oriented receivers with each
-  // patch's exact projected area): it joins the irradiance gathered at the patch's root.
+  // Each patch's shares of what its clusters received (its weight per unit area, q_j): it joins
+  // the irradiance gathered at the patch's root.
   tbb::parallel_for(tbb::blocked_range<int>(0, h_.patch_count(), 64), [&](const tbb::blocked_range<int>& range) {
     for (int p = range.begin(); p != range.end(); ++p) {
-      const Vec3& n = scene_.patches[static_cast<std::size_t>(p)].normal;
       Rgb sum = Rgb::Zero();
       for (int c = tree_->parent_of_patch(p); c >= 0; c = tree_->cluster(c).parent) {
         const std::size_t i = elements_ + static_cast<std::size_t>(c);
+        const std::uint64_t index =
+            static_cast<std::uint64_t>(position_[static_cast<std::size_t>(p)] - tree_->cluster(c).begin);
         for (std::uint64_t k = cluster_offsets_[i]; k < cluster_offsets_[i + 1]; ++k) {
-          const std::vector<int>* hidden = receiver_hidden_[k].get();
-          if (hidden != nullptr && std::binary_search(hidden->begin(), hidden->end(), p)) continue;
-          const std::array<float, 3>& u = cluster_links_[k].to_source;
-          const double w = facing_cosine(n, Vec3(u[0], u[1], u[2]));
+          const double w = static_cast<double>(weights_[cluster_links_[k].receiver_q + index]);
           if (w > 0.0) sum += w * carried_[k];
         }
       }

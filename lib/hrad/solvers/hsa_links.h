@@ -20,10 +20,10 @@ class HsaLinks final : public LinkOperator {
   /// Stores both directions of every link in `links` that carries a factor, grouped by receiver:
   /// 76 bytes per link between elements (32-bit source, the factor's shape over the receiver and
   /// the source points' weights, Link::shape_p and source_q, as 9 floats each: 6e-8 relative, far
-  /// below any tolerance), 56 per link with a cluster end (32-bit source, float factor, the unit
-  /// direction to the source, the inverse of the source's projected area towards the receiver, and
-  /// the lists of patches on either end that see nothing of the other, usually none). `tree` may be null when no link
-  /// has a cluster end.
+  /// below any tolerance), 32 per link with a cluster end (32-bit source, float factor, the inverse
+  /// of the source's weight, the offsets of both ends' weights) and 4 bytes per patch of each
+  /// cluster end for its weight, shared by both directions. `tree` may be null when no link has a
+  /// cluster end.
   HsaLinks(const std::vector<Link>& links, const ElementHierarchy& hierarchy, const ClusterTree* tree,
            const ClusterTransfer& geometry);
 
@@ -42,22 +42,24 @@ class HsaLinks final : public LinkOperator {
     std::array<float, 9> factor;  ///< the factor at the receiver's points (link_operator.h PointValues)
     std::array<float, 9> weight;  ///< the source's shape over the exchange: sum_i weight_i m_i is the radiosity sent
   };
-  /// A link with a cluster end. A cluster source shows the mean radiosity of its patches weighted
-  /// by their projected areas towards the receiver, A_j max(0, n_j.u) (Sillion 1995's oriented
-  /// clusters, with each patch's exact projected area); a cluster receiver shares the power A_R F B
-  /// among its patches in proportion to their projected areas towards the source, so that a patch
-  /// facing away gets nothing and the shares sum to that power. Patches that see nothing of the
-  /// other end (Link::hidden_p) neither show nor receive.
+  /// A link with a cluster end. Each cluster end shares the link among its patches by weights A_j
+  /// q_j (ClusterTransfer::link_weights(): each patch's factor to the other end's bounding sphere
+  /// times the part of the other end it sees; Sillion 1995's oriented clusters, per patch): a
+  /// cluster source shows the mean radiosity of its patches by these weights, a cluster receiver
+  /// gives patch j the share A_j q_j / W of the power A_R F B it receives. The two directions of a
+  /// link use the same weights of each end, so the link is reciprocal patch by patch, and the shares
+  /// sum to what the link carries.
   struct ClusterLink {
     std::int32_t source;
-    /// F for an element receiver; A_R F / (projected area of R towards the source) for a cluster
-    /// receiver, whose patch i then gets factor max(0, n_i.u) times what the source shows.
+    /// F for an element receiver; A_R F / W_R for a cluster receiver, whose patch j then gets q_j
+    /// times what the source shows.
     float factor;
-    std::array<float, 3> to_source;  ///< unit direction u from the receiver's centre to the source's
-    float source_scale;              ///< 1 / the source's projected area towards the receiver (cluster sources)
+    float source_scale;            ///< 1 / W_S of a cluster source
+    std::uint64_t receiver_q = 0;  ///< a cluster receiver's q_j: weights_[receiver_q + j]
+    std::uint64_t source_q = 0;    ///< a cluster source's q_j: weights_[source_q + j]
   };
   static_assert(sizeof(DirectedLink) == 76);
-  static_assert(sizeof(ClusterLink) == 24);
+  static_assert(sizeof(ClusterLink) == 32);
 
   /// What the source of cluster link k shows towards its receiver.
   Rgb shown(const NodeField& field, std::uint64_t k) const;
@@ -70,10 +72,10 @@ class HsaLinks final : public LinkOperator {
   std::vector<DirectedLink> links_;
   std::vector<ClusterLink> cluster_links_;
   std::uint64_t cluster_terms_ = 0;
-  std::uint64_t hidden_bytes_ = 0;  ///< the hidden patches' lists (shared with the links)
   bool cluster_receivers_ = false;  ///< some link has a cluster receiver
-  /// Per cluster link: the receiver's and the source's patches that take no part (Link::hidden_p).
-  std::vector<std::shared_ptr<const std::vector<int>>> receiver_hidden_, source_hidden_;
+  std::vector<float> weights_;      ///< per cluster end of a link, its patches' q_j in tree order
+  /// Per patch: its index in the patch list of each cluster above it is position_[p] - begin.
+  std::vector<int> position_;
   mutable std::vector<Rgb> carried_;  ///< per cluster link of a cluster receiver: factor times what the source shows
 };
 

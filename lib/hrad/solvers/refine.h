@@ -24,9 +24,9 @@ struct Link {
   double f_pq = 0.0;
   double f_qp = 0.0;
   bool partial = false;
-  std::shared_ptr<const std::vector<int>> hidden_p = nullptr, hidden_q = nullptr;  ///< Candidate::hidden_p, hidden_q
-  float shadow_p = 0.0f, shadow_q = 0.0f;                                          ///< Candidate::shadow_p, shadow_q
-  float share_p = 0.0f, share_q = 0.0f;                                            ///< Candidate::share_p, share_q
+  std::shared_ptr<const ShadedPatches> hidden_p = nullptr, hidden_q = nullptr;  ///< Candidate::hidden_p, hidden_q
+  float shadow_p = 0.0f, shadow_q = 0.0f;                                       ///< Candidate::shadow_p, shadow_q
+  float share_p = 0.0f, share_q = 0.0f;                                         ///< Candidate::share_p, share_q
   bool shaped = false;
   std::array<float, 9> shape_p{}, shape_q{};
   /// Between elements: what p sends through the link is sum_i source_p[i] m_i over the moments of

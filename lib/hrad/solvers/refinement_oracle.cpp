@@ -24,8 +24,8 @@ constexpr double kGaussSeparation = 0.25;
 // 1e-12 to 1e-7 relative, which no sum ever notices.
 constexpr double kNegligibleFactor = 1e-6;
 constexpr double kLinkAbsoluteTolerance = 1e-9;
-// Rays per facing patch of a cluster link's ends before the patch counts as seeing nothing of the
-// other end (ErrorBoundOracle::decide_with_cluster()).
+// Rays per facing patch of a cluster link's ends for the part of the other end it sees
+// (ErrorBoundOracle::decide_with_cluster()).
 constexpr int kFacingRays = 4;
 
 // One side of an element pair: the receiver's points, their unoccluded point factors to the
@@ -454,27 +454,37 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
       const double error_qp = error_pq * sp.area / sq.area;
       const auto [e_p, e_q] = weighted(c.p, c.q, error_pq, error_qp);
       if (std::max(e_p, e_q) <= 1.0) {
-        if (!(e.value > 0.0) && !(e.reverse > 0.0)) return;
-        // The patches that face the other node but see nothing of it (the inside of a closed box
-        // lit from outside) get no share of the link and show nothing through it: light never
-        // reaches a surface through a link it cannot see through. Nor may a patch get more through
-        // the link than any point of it can see of the other side (TransferBound): patches grazing
-        // the centre direction would get it all when no other faces; such pairs are split.
-        const Vec3 d = (sq.centre - sp.centre) / r;
-        std::vector<int> hidden_p =
-            evaluator_.hidden_surfaces(surfaces_p, d, surfaces_q, kFacingRays, detail::mix_seed(seed, 1));
-        std::vector<int> hidden_q =
-            evaluator_.hidden_surfaces(surfaces_q, -d, surfaces_p, kFacingRays, detail::mix_seed(seed, 2));
+        // The linked factor from samples of its own: the test above read `e`, and keeping it would
+        // keep the estimates that happened to come out small and quiet (a pair whose rays were all
+        // blocked passes with error 0) and split the others, a loss of power on every link.
+        const FormFactorEstimate linked =
+            evaluator_.sampled(surfaces_p, surfaces_q, evaluator_.visibility_samples(), detail::mix_seed(seed, 3));
+        if (!(linked.value > 0.0) && !(linked.reverse > 0.0)) return;
+        // Each cluster end shares the link among its patches by their factors to the other end's
+        // bounding sphere times the part of the other end each sees (ClusterTransfer::
+        // link_weights()): a patch that sees nothing of it (the inside of a closed box lit from
+        // outside) gets nothing and shows nothing, and one that furniture of its own cluster half
+        // hides gets half. Nor may a patch get more through the link than any point of it can see
+        // of the other side (TransferBound): such pairs are split.
+        auto shaded = [&](NodeRef end, const NodeSurfaces& from, NodeRef other, const NodeSurfaces& to,
+                          std::uint64_t stream) {
+          if (!is_cluster(end)) return ShadedPatches{};
+          ShadedPatches s = evaluator_.shaded_surfaces(from, to, kFacingRays, detail::mix_seed(seed, stream));
+          geometry_.drop_idle(end, other, &s);
+          return s;
+        };
+        ShadedPatches shaded_p = shaded(c.p, surfaces_p, c.q, surfaces_q, 1);
+        ShadedPatches shaded_q = shaded(c.q, surfaces_q, c.p, surfaces_p, 2);
         const TransferBound most = geometry_.bound(sp, sq);
-        const double exchange = e.value * sp.area;
-        if (!(exchange * geometry_.largest_share(c.p, d, &hidden_p) > most.pq) &&
-            !(exchange * geometry_.largest_share(c.q, -d, &hidden_q) > most.qp)) {
+        const double exchange = linked.value * sp.area;
+        if (!(exchange * geometry_.largest_share(c.p, c.q, &shaded_p) > most.pq) &&
+            !(exchange * geometry_.largest_share(c.q, c.p, &shaded_q) > most.qp)) {
           c.decision = Decision::kLink;
-          c.f_pq = e.value;
-          c.f_qp = e.reverse;
+          c.f_pq = linked.value;
+          c.f_qp = linked.reverse;
           c.partial = true;
-          if (!hidden_p.empty()) c.hidden_p = std::make_shared<const std::vector<int>>(std::move(hidden_p));
-          if (!hidden_q.empty()) c.hidden_q = std::make_shared<const std::vector<int>>(std::move(hidden_q));
+          if (!shaded_p.empty()) c.hidden_p = std::make_shared<const ShadedPatches>(std::move(shaded_p));
+          if (!shaded_q.empty()) c.hidden_q = std::make_shared<const ShadedPatches>(std::move(shaded_q));
           return;
         }
       }

@@ -46,10 +46,11 @@ struct Candidate {
   double f_pq = 0.0;
   double f_qp = 0.0;
   bool partial = false;  ///< linked with a visible fraction strictly between 0 and 1 (or sampled)
-  /// A link with a cluster end: the patches of p (of q) that face the other end but see nothing of
-  /// it (sorted patch indices; null when none). They get no share of the link and show nothing
-  /// through it (hsa_links.h).
-  std::shared_ptr<const std::vector<int>> hidden_p = nullptr, hidden_q = nullptr;
+  /// A link with a cluster end: the patches of a cluster p (q) that face the other end but see only
+  /// part of it or nothing (FormFactorEvaluator::shaded_surfaces(); null when none). Each gets and
+  /// shows through the link in proportion to its projected area times the fraction it sees
+  /// (hsa_links.h): a patch that sees nothing of the other end takes no part.
+  std::shared_ptr<const ShadedPatches> hidden_p = nullptr, hidden_q = nullptr;
   /// A partly visible link's error from giving each side the link's visible fraction, as the
   /// weighted test counts it (1 = the tolerance): what its receiver gathers errs by this much where
   /// the visibility differs from the fraction.
