@@ -114,6 +114,10 @@ struct DeferredPair {
   double unoccluded;
 };
 
+// A pair whose patches lie in one unit u counts in A_u F_uu both ways (p -> q and q -> p): twice its
+// exchange, and twice its error.
+double same_unit_multiplier(int u, int v) { return u == v ? 2.0 : 1.0; }
+
 // Rays for each deferred pair so that each row's sampled part has a standard error of at most
 // `sigma` (the binomial bound: a fraction's variance is at most 1/(4 n)). Pair k adds c_kw =
 // m U_k / A_w to row w (m = 2 when both patches are in w) with standard error c_kw / (2 sqrt(n_k));
@@ -125,7 +129,7 @@ std::vector<int> row_error_rays(const std::vector<DeferredPair>& deferred, const
   std::vector<double> sum(area.size(), 0.0);
   auto shares = [&](const DeferredPair& d) {
     const int u = unit[static_cast<std::size_t>(d.p)], v = unit[static_cast<std::size_t>(d.q)];
-    const double m = u == v ? 2.0 : 1.0;
+    const double m = same_unit_multiplier(u, v);
     return std::array<std::pair<int, double>, 2>{{{u, m * d.unoccluded / area[static_cast<std::size_t>(u)]},
                                                   {v, m * d.unoccluded / area[static_cast<std::size_t>(v)]}}};
   };
@@ -234,9 +238,9 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
   auto add = [&](std::size_t p, int q, const PairExchange& e) {
     const int u = unit[p], v = unit[static_cast<std::size_t>(q)];
     if (u == v) {
-      // Both orders of the pair lie in one unit: A_u F_uu counts p -> q and q -> p.
-      upper[static_cast<std::size_t>(u)].emplace_back(u, 2.0 * e.exchange);
-      variance[static_cast<std::size_t>(u)] += 4.0 * e.error * e.error;
+      const double m = same_unit_multiplier(u, v);
+      upper[static_cast<std::size_t>(u)].emplace_back(u, m * e.exchange);
+      variance[static_cast<std::size_t>(u)] += m * m * e.error * e.error;
     } else {
       upper[static_cast<std::size_t>(std::min(u, v))].emplace_back(std::max(u, v), e.exchange);
       variance[static_cast<std::size_t>(u)] += e.error * e.error;
@@ -345,7 +349,7 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
       std::vector<double> row_variance(static_cast<std::size_t>(n), 0.0);
       for (std::size_t k = 0; k < deferred.size(); ++k) {
         const int u = unit[static_cast<std::size_t>(deferred[k].p)], v = unit[static_cast<std::size_t>(deferred[k].q)];
-        const double e = sampled[k].error * (u == v ? 2.0 : 1.0);
+        const double e = sampled[k].error * same_unit_multiplier(u, v);
         row_variance[static_cast<std::size_t>(u)] +=
             e * e / (m.area[static_cast<std::size_t>(u)] * m.area[static_cast<std::size_t>(u)]);
         if (v != u)
