@@ -362,8 +362,9 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   // The link carries the factor's shape over each side (push_pull.h); its error is bounded by how
   // far the visible point factors stray from a linear field.
   const double f_pq = exchange * fraction / p.area, f_qp = exchange * fraction / q.area;
-  const double err_p = linear_error(sp, f_pq, true, tol_.fields) + disagreement / p.area;
-  const double err_q = linear_error(sq, f_qp, true, tol_.fields) + disagreement / q.area;
+  const double field_p = linear_error(sp, f_pq, true, tol_.fields), field_q = linear_error(sq, f_qp, true, tol_.fields);
+  const double err_p = field_p + disagreement / p.area;
+  const double err_q = field_q + disagreement / q.area;
   auto [e_p, e_q] = weighted(c.p, c.q, err_p, err_q);
   if (tol_.fields) {
     // What p gathers through the link is q's radiosity weighed by the link's field over q (q's
@@ -373,8 +374,8 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
     // its weighted mean (at most its a-priori weight), is what p's gather errs by: on the Cornell box
     // this, not the receiver's field, made the leaves in the blocks' umbras too bright (a darker
     // strip of q near the contact weighed too little). Only splitting q reduces it.
-    const double relative_q = f_qp > 0.0 ? linear_error(sq, f_qp, true, tol_.fields) / f_qp : 0.0;
-    const double relative_p = f_pq > 0.0 ? linear_error(sp, f_pq, true, tol_.fields) / f_pq : 0.0;
+    const double relative_q = f_qp > 0.0 ? field_q / f_qp : 0.0;
+    const double relative_p = f_pq > 0.0 ? field_p / f_pq : 0.0;
     const auto [s_p, s_q] = weighted(c.p, c.q, f_pq * relative_q, f_qp * relative_p);
     if (can_split(c.q)) e_q = std::max(e_q, s_p);
     if (can_split(c.p)) e_p = std::max(e_p, s_q);
