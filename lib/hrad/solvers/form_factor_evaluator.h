@@ -153,9 +153,12 @@ class FormFactorEvaluator {
 
   /// Kernel-weighted visible fraction of a partly visible pair from `samples` point pairs (0: the
   /// evaluator's number), stratified on both polygons (Wallace, Elmquist & Haines 1989),
-  /// deterministic in the pair's geometry; only `occluders` can block when not null.
+  /// deterministic in the pair's geometry and `stream`: another stream draws point pairs independent
+  /// of stream 0's (a link's factor must not come from the samples that decided to keep it); only
+  /// `occluders` can block when not null.
   double pair_visibility(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
-                         int source_patch, const std::vector<int>* occluders, int samples = 0) const;
+                         int source_patch, const std::vector<int>* occluders, int samples = 0,
+                         std::uint64_t stream = 0) const;
 
   /// Factor between the surfaces of two nodes by `samples` stratified point pairs (uniform by area
   /// on each side): F(p -> q) = A_q mean(cos cos V / (pi r^2)), the visibility V by rays through the
@@ -200,7 +203,8 @@ class FormFactorEvaluator {
   // Kernel-weighted visible fraction of a partially visible pair and its error estimate.
   std::pair<double, double> weighted_visibility(std::span<const Vec3> receiver, int receiver_patch,
                                                 std::span<const Vec3> source, int source_patch,
-                                                const std::vector<int>* occluders = nullptr, int samples = 0) const;
+                                                const std::vector<int>* occluders = nullptr, int samples = 0,
+                                                std::uint64_t stream = 0) const;
 
   const Scene& scene_;
   Effects effects_;

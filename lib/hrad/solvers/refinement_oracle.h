@@ -45,7 +45,7 @@ struct Candidate {
   std::shared_ptr<const std::vector<int>> found_occluders = nullptr;
   double f_pq = 0.0;
   double f_qp = 0.0;
-  bool partial = false;  ///< linked with a visible fraction strictly between 0 and 1 (or sampled)
+  bool partial = false;  ///< linked with a sampled visible fraction (the shaft test found occluders; a cluster link)
   /// A link with a cluster end: the patches of a cluster p (q) that face the other end but see only
   /// part of it or nothing (FormFactorEvaluator::shaded_surfaces(); null when none). Each gets and
   /// shows through the link in proportion to its projected area times the fraction it sees
@@ -147,6 +147,7 @@ class ErrorBoundOracle final : public RefinementOracle {
   const std::vector<Rgb>* cluster_radiosity_;
   int rays_per_point_;
   int pair_samples_;
+  double total_area_ = 0.0;  ///< the scene's: a link's weighted exchange over it is its share of the power
 };
 
 /// The feps weights: a priori radiosity of each patch relative to the scene's, w = max over
