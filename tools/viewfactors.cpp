@@ -33,9 +33,15 @@
 //                      in proportion to their unoccluded factors and their rows' partly visible
 //                      sums (fewest rays where a pair matters least; for large models)
 //   --exact            partly visible pairs by the exact visible region (slow; no sampling error)
-//   --threshold T      skip blocks of pairs whose factor bound (cluster hierarchy) is below T in
-//                      both directions (default 0: none); each row reports the sum of its
-//                      skipped bounds, the most factor the skipped pairs could hold
+//   --threshold T      drop pairs whose unobstructed factor is below T in both directions, found
+//                      by a cheap bound from distance and heights or else by the closed form,
+//                      before any shaft test (default 0: none); each row reports the sum of
+//                      those bounds, the most factor the dropped pairs could hold
+//   --sample-below F   pairs whose unobstructed factor is below F both ways (and not dropped)
+//                      skip the shaft test: their visible fraction is sampled with --far-rays
+//                      point pairs (default 16) against the whole scene (default 0: none; for
+//                      large open models, where most pairs are far and their shafts cross
+//                      many occluders)
 //   --enforce-closure  for closed models: the least-squares adjustment of A_i F_ij that keeps it
 //                      symmetric and makes every row sum to 1 (Lawson & Hanson; van Leersum 1989);
 //                      the report says how much it moved
@@ -97,8 +103,8 @@ void add_viewfactors_command(CLI::App& app) {
       app.add_subcommand("viewfactors", "Obstructed view-factor matrix between faces or groups (thermal radiation)");
   struct Args {
     std::string scene, out, format, by = "face", report, write_vs3, points, boundary, heat;
-    double visibility_error = 0.01, row_error = 0.0, threshold = 0.0, sky_temperature = 0.0;
-    int max_rays = 4096, threads = 0;
+    double visibility_error = 0.01, row_error = 0.0, threshold = 0.0, sample_below = 0.0, sky_temperature = 0.0;
+    int max_rays = 4096, far_rays = 16, threads = 0;
     bool exact = false, enforce_closure = false, quiet = false;
   };
   auto args = std::make_shared<Args>();
@@ -114,7 +120,10 @@ void add_viewfactors_command(CLI::App& app) {
                   "Target standard error of each row sum (allocates rays; default off)");
   cmd->add_option("--max-rays", args->max_rays, "Most point pairs per partly visible pair (default 4096)");
   cmd->add_flag("--exact", args->exact, "Partly visible pairs by the exact visible region");
-  cmd->add_option("--threshold", args->threshold, "Skip pair blocks whose factor bound is below this (default 0)");
+  cmd->add_option("--threshold", args->threshold, "Drop pairs whose unobstructed factor is below this (default 0)");
+  cmd->add_option("--sample-below", args->sample_below,
+                  "Sample pairs whose unobstructed factor is below this without a shaft test (default 0)");
+  cmd->add_option("--far-rays", args->far_rays, "Point pairs per --sample-below pair (default 16)");
   cmd->add_flag("--enforce-closure", args->enforce_closure,
                 "Adjust a closed model's rows to sum to 1, keeping reciprocity");
   cmd->add_option("--points", args->points, "Probe points (CSV x,y,z,nx,ny,nz): point-to-surface factors to --out");
@@ -136,6 +145,12 @@ void add_viewfactors_command(CLI::App& app) {
       throw Error(fmt::format("--max-rays: {} is not in [64, 16777216]", args->max_rays));
     if (!(args->threshold >= 0.0 && args->threshold < 1.0))
       throw Error(fmt::format("--threshold: {} is not in [0, 1)", args->threshold));
+    if (!(args->sample_below >= 0.0 && args->sample_below < 1.0))
+      throw Error(fmt::format("--sample-below: {} is not in [0, 1)", args->sample_below));
+    if (args->sample_below > 0.0 && args->exact)
+      throw Error("--sample-below and --exact exclude each other (the exact region samples nothing)");
+    if (args->far_rays < 4 || args->far_rays > 1 << 24)
+      throw Error(fmt::format("--far-rays: {} is not in [4, 16777216]", args->far_rays));
     if (args->threads < 0) throw Error(fmt::format("--threads: {} is negative", args->threads));
     if (args->boundary.empty() != args->heat.empty())
       throw Error(args->heat.empty() ? "--boundary needs --heat Q.csv" : "--heat needs --boundary B.csv");
@@ -167,6 +182,8 @@ void add_viewfactors_command(CLI::App& app) {
     options.pair.fraction_error = args->visibility_error;
     options.pair.max_rays = args->max_rays;
     options.threshold = args->threshold;
+    options.sample_below = args->sample_below;
+    options.pair.far_rays = args->far_rays;
     options.row_error = args->row_error;
     options.threads = args->threads;
     if (!args->quiet)
@@ -239,16 +256,14 @@ void add_viewfactors_command(CLI::App& app) {
       write_file_atomically(args->report, [&](std::ostream& o) { o << report.dump(2) << "\n"; });
     outputs.commit();
     std::cout << fmt::format(
-        "{}: {} surfaces, {} nonzeros; pairs {} ({} skipped below {}, {} visible, {} hidden, {} partial, {} facing "
-        "away); "
-        "row sums {:.12g}..{:.12g}, max reciprocity error {:.3g}, max row sampling error {:.3g}, max skipped bound "
-        "{:.3g}; "
-        "{:.3f} s, peak memory {:.0f} MB\n",
+        "{}: {} surfaces, {} nonzeros; pairs {} ({} dropped below {}, {} visible, {} hidden, {} partial of which {} "
+        "sampled without a shaft test, {} facing away); row sums {:.12g}..{:.12g}, max reciprocity error {:.3g}, max "
+        "row sampling error {:.3g}, max dropped bound {:.3g}; {} rays; {:.3f} s, peak memory {:.0f} MB\n",
         scene.path, m.n, m.nonzeros(), m.counters.patch_pairs, m.counters.skipped_pairs, args->threshold,
-        m.counters.fully_visible, m.counters.fully_hidden, m.counters.partial, m.counters.facing_away,
-        report["min_row_sum"].get<double>(), report["max_row_sum"].get<double>(),
+        m.counters.fully_visible, m.counters.fully_hidden, m.counters.partial, m.counters.shaft_skipped,
+        m.counters.facing_away, report["min_row_sum"].get<double>(), report["max_row_sum"].get<double>(),
         report["max_reciprocity_error"].get<double>(), report["max_sampling_error"].get<double>(),
-        report["max_skipped_bound"].get<double>(), m.counters.seconds, peak_memory_mb());
+        report["max_skipped_bound"].get<double>(), m.counters.rays, m.counters.seconds, peak_memory_mb());
     if (args->enforce_closure)
       std::cout << fmt::format(
           "closure: rows off by up to {:.3g} before, {:.3g} after; largest factor change {:.3g}, {:.3g} of the "

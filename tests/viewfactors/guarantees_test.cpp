@@ -187,7 +187,7 @@ TEST(ViewFactorGuarantees, EnforceClosureKeepsReciprocity) {
   EXPECT_LE(none.max_factor_change, 1e-12);
 }
 
-// --threshold: pairs are skipped only where the cluster bound is below the threshold, and each
+// --threshold: pairs are dropped only where their unobstructed factor is below the threshold, and each
 // row's reported bound covers what it lost: sum_v (F_full - F_pruned)_uv <= skipped_bound_u. The
 // pairs that were kept have the same factors.
 TEST(ViewFactorGuarantees, ThresholdBoundCoversSkippedFactors) {

@@ -20,11 +20,12 @@ struct Fraction {
 };
 
 // Kernel-weighted visible fraction from `rays` point pairs: sqrt(rays) stratified points on p, as
-// many rays from each to stratified points of q. Its standard error is the ratio estimator's over
+// many rays from each to stratified points of q (tested against `occluders`, or the whole scene when
+// null). Its standard error is the ratio estimator's over
 // the points of p (each point's rays are one group), floored by the Wilson half-width of the ray
 // count, which is not zero when every ray agrees.
 Fraction sampled_fraction(const FormFactorEvaluator& ev, const Patch& a, int p, const Patch& b, int q,
-                          const std::vector<int>& occluders, int rays, std::uint64_t seed) {
+                          const std::vector<int>* occluders, int rays, std::uint64_t seed) {
   const int kx = std::max(2, static_cast<int>(std::lround(std::sqrt(double(rays)))));
   const int ky = std::max(1, (rays + kx - 1) / kx);
   detail::Rng rng(detail::mix_seed(seed, 1));
@@ -36,7 +37,7 @@ Fraction sampled_fraction(const FormFactorEvaluator& ev, const Patch& a, int p, 
   int visible_rays = 0, cast = 0;
   for (std::size_t i = 0; i < ux.size(); ++i) {
     const KernelVisibility k = ev.visibility_from_point(sx.point(ux[i].x(), ux[i].y()), a.normal, p, b.vertices, q,
-                                                        &occluders, ky, detail::mix_seed(seed, 2 + i));
+                                                        occluders, ky, detail::mix_seed(seed, 2 + i));
     v[i] = k.visible;
     w[i] = k.weight;
     sv += k.visible;
@@ -73,6 +74,12 @@ Fraction region_fraction(const FormFactorEvaluator& ev, const Patch& a, int p, c
   return f;
 }
 
+void apply(const Fraction& fraction, PairExchange* r) {
+  r->regions = fraction.regions;
+  r->exchange = r->unoccluded * fraction.value;
+  r->error = r->unoccluded * fraction.error;
+}
+
 // Classifies the pair (collecting the occluders a partly visible pair's rays must test) and
 // evaluates its closed form.
 PairExchange classify(const FormFactorEvaluator& ev, int p, int q, const PairExchangeOptions& options,
@@ -83,26 +90,48 @@ PairExchange classify(const FormFactorEvaluator& ev, int p, int q, const PairExc
   const Patch& b = scene.patches[static_cast<std::size_t>(q)];
   occluders->clear();
   if (ev.faces_away(a.vertices, b.vertices)) return r;
-  r.pair_class = ev.classify(a.vertices, p, b.vertices, q, nullptr, occluders);
-  if (r.pair_class == PairClass::kFacingAway || r.pair_class == PairClass::kFullyHidden) return r;
   // The closed form to what each class needs (polygon_to_polygon.h: a looser tolerance keeps more
   // contour sums and takes lower Gauss orders for far pairs): a fully visible pair's factor is the
   // answer, to 1e-10 relative; a partly visible pair's is multiplied by a fraction known to ~1e-3
-  // at best, so 1e-8 is ample.
-  const PairFormFactor f = polygon_to_polygon(
+  // at best, so 1e-8 is ample. With a threshold or sample_below, the closed form comes first, at
+  // kScreenTolerance: a pair below the threshold both ways is dropped (the factor with its
+  // tolerance as the bound), one below sample_below is sampled with it (a fraction from tens of
+  // rays); the rest are classified and evaluated again to what their class needs.
+  constexpr double kScreenTolerance = 1e-6;
+  PairFormFactor f;
+  if (options.threshold > 0.0 || options.sample_below > 0.0) {
+    f = polygon_to_polygon(a.vertices, b.vertices, kScreenTolerance);
+    ++r.closed_forms;
+    const double margin = 1.0 + 16.0 * kScreenTolerance;
+    if (f.from_to * margin < options.threshold && f.to_from * margin < options.threshold) {
+      r.dropped = true;
+      r.dropped_pq = f.from_to * margin;
+      r.dropped_qp = f.to_from * margin;
+      return r;
+    }
+    if (f.from_to < options.sample_below && f.to_from < options.sample_below) {
+      r.pair_class = PairClass::kPartial;
+      r.shaft_skipped = true;
+      r.unoccluded = 0.5 * (a.area * f.from_to + b.area * f.to_from);
+      if (r.unoccluded > 0.0) {
+        const Fraction fraction = sampled_fraction(ev, a, p, b, q, nullptr, std::max(4, options.far_rays),
+                                                   ev.pair_seed(a.vertices, p, b.vertices, q));
+        r.rays = fraction.rays;
+        apply(fraction, &r);
+      }
+      return r;
+    }
+  }
+  r.pair_class = ev.classify(a.vertices, p, b.vertices, q, nullptr, occluders);
+  if (r.pair_class == PairClass::kFacingAway || r.pair_class == PairClass::kFullyHidden) return r;
+  f = polygon_to_polygon(
       a.vertices, b.vertices,
       r.pair_class == PairClass::kPartial ? options.partial_closed_form_tolerance : options.closed_form_tolerance);
-  r.evaluated = true;
+  ++r.closed_forms;
   // Both directions come from one evaluation; their mean is symmetric in p and q.
   r.unoccluded = 0.5 * (a.area * f.from_to + b.area * f.to_from);
   if (r.pair_class == PairClass::kFullyVisible) r.exchange = r.unoccluded;
   return r;
-}
-
-void apply(const Fraction& fraction, PairExchange* r) {
-  r->regions = fraction.regions;
-  r->exchange = r->unoccluded * fraction.value;
-  r->error = r->unoccluded * fraction.error;
 }
 
 }  // namespace
@@ -123,7 +152,7 @@ void sample_partial(const FormFactorEvaluator& ev, int p, int q, int rays, PairE
   const std::uint64_t seed = ev.pair_seed(a.vertices, p, b.vertices, q);
   rays = std::max(4, rays);
   const Fraction fraction =
-      sampled_fraction(ev, a, p, b, q, occluders, rays, detail::mix_seed(seed, static_cast<std::uint64_t>(rays)));
+      sampled_fraction(ev, a, p, b, q, &occluders, rays, detail::mix_seed(seed, static_cast<std::uint64_t>(rays)));
   r->rays += fraction.rays;
   apply(fraction, r);
 }
@@ -131,7 +160,7 @@ void sample_partial(const FormFactorEvaluator& ev, int p, int q, int rays, PairE
 PairExchange pair_exchange(const FormFactorEvaluator& ev, int p, int q, const PairExchangeOptions& options) {
   thread_local std::vector<int> occluders;
   PairExchange r = classify(ev, p, q, options, &occluders);
-  if (r.pair_class != PairClass::kPartial || !(r.unoccluded > 0.0)) return r;
+  if (r.pair_class != PairClass::kPartial || !(r.unoccluded > 0.0) || r.shaft_skipped) return r;
   const Scene& scene = ev.scene();
   const Patch& a = scene.patches[static_cast<std::size_t>(p)];
   const Patch& b = scene.patches[static_cast<std::size_t>(q)];
@@ -141,7 +170,7 @@ PairExchange pair_exchange(const FormFactorEvaluator& ev, int p, int q, const Pa
   } else {
     const std::uint64_t seed = ev.pair_seed(a.vertices, p, b.vertices, q);
     for (int rays = std::max(4, options.min_rays);; rays *= 4) {
-      fraction = sampled_fraction(ev, a, p, b, q, occluders, std::min(rays, options.max_rays),
+      fraction = sampled_fraction(ev, a, p, b, q, &occluders, std::min(rays, options.max_rays),
                                   detail::mix_seed(seed, static_cast<std::uint64_t>(rays)));
       r.rays += fraction.rays;
       if (fraction.error <= options.fraction_error || rays >= options.max_rays) break;

@@ -39,6 +39,15 @@ struct PairExchangeOptions {
   /// and for a partly visible pair's unoccluded factor.
   double closed_form_tolerance = 1e-10;
   double partial_closed_form_tolerance = 1e-8;
+  /// When > 0: a pair whose unobstructed factors (the closed form) are both below this is dropped
+  /// before its shaft test; its result carries those factors as the most it could hold.
+  double threshold = 0.0;
+  /// When > 0: a pair whose unobstructed factors are both below this (and not dropped) skips the
+  /// shaft test; its visible fraction is sampled with `far_rays` point pairs against the whole
+  /// scene. Far pairs are most pairs of a large open model and each shaft across it meets many
+  /// occluders; their factors are small, so their sampling error weighs little in a row.
+  double sample_below = 0.0;
+  int far_rays = 16;
 };
 
 struct PairExchange {
@@ -46,9 +55,12 @@ struct PairExchange {
   double unoccluded = 0.0;  ///< the same without obstruction (0 when facing away or coplanar)
   double error = 0.0;       ///< standard error of `exchange` from sampling (0 when exact)
   PairClass pair_class = PairClass::kFacingAway;
-  int rays = 0;            ///< segments cast
-  int regions = 0;         ///< exact visible regions computed
-  bool evaluated = false;  ///< the closed form was called
+  int rays = 0;                               ///< segments cast
+  int regions = 0;                            ///< exact visible regions computed
+  int closed_forms = 0;                       ///< polygon_to_polygon() calls made
+  bool dropped = false;                       ///< below options.threshold both ways: exchange 0, not classified
+  double dropped_pq = 0.0, dropped_qp = 0.0;  ///< if dropped: bounds of F_pq and F_qp (unobstructed)
+  bool shaft_skipped = false;                 ///< below options.sample_below: sampled without a shaft test (kPartial)
 };
 
 /// Patches `p` and `q` of the evaluator's scene. The evaluator must be built with the scene's
@@ -56,7 +68,8 @@ struct PairExchange {
 PairExchange pair_exchange(const FormFactorEvaluator& evaluator, int p, int q, const PairExchangeOptions& options);
 
 /// pair_exchange() without sampling: a partly visible pair comes back with its class, its
-/// unoccluded exchange and exchange 0, for sample_partial() once its ray budget is known.
+/// unoccluded exchange and exchange 0, for sample_partial() once its ray budget is known (a pair
+/// below options.sample_below comes back sampled).
 PairExchange classify_pair(const FormFactorEvaluator& evaluator, int p, int q, const PairExchangeOptions& options);
 
 /// The sampled visible fraction of a partly visible pair from classify_pair() with `rays` point

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <utility>
@@ -13,98 +14,37 @@
 
 #include "hrad/core/error.h"
 #include "hrad/core/stopwatch.h"
-#include "hrad/mesh/element_hierarchy.h"
-#include "hrad/solvers/cluster_transfer.h"
-#include "hrad/solvers/cluster_tree.h"
+#include "hrad/viewfactors/pair_bound.h"
 
 namespace hrad {
 namespace {
 
-// Upper-triangle candidates of each patch when a threshold prunes pairs, with the skipped bounds.
-struct Candidates {
-  std::vector<std::vector<int>> of_patch;  // q > p
-  std::vector<double> skipped_bound;       // per patch: sum of the bounds of its skipped blocks
-  std::uint64_t skipped_pairs = 0, cluster_pairs = 0;
-};
-
-// Dual traversal of the cluster tree (the pairs of a hierarchy, Appel 1985 and Barnes & Hut 1986
-// for n-body problems): a block of pairs whose factor bound is below the threshold both ways is
-// skipped whole; otherwise the larger node is opened, down to pairs of patches.
-class BoundedPairs {
+// Sums of nonnegative bounds, one per patch, added from any thread in any order with the same
+// result: fixed point in units of 2^-44, each term rounded up (so the sum still bounds).
+class BoundSums {
  public:
-  BoundedPairs(const Scene& scene, const std::vector<char>& eligible, double threshold)
-      : scene_(scene),
-        eligible_(eligible),
-        threshold_(threshold),
-        hierarchy_(scene),
-        tree_(scene),
-        transfer_(scene, hierarchy_, &tree_) {
-    out_.of_patch.resize(scene.patches.size());
-    out_.skipped_bound.assign(scene.patches.size(), 0.0);
+  explicit BoundSums(std::size_t n) : sums_(n) {}
+  void add(std::size_t p, double bound) {
+    sums_[p].fetch_add(static_cast<std::uint64_t>(std::ceil(std::ldexp(bound, kBits))), std::memory_order_relaxed);
   }
-
-  Candidates run() && {
-    visit_self(tree_.root());
-    for (auto& list : out_.of_patch) std::sort(list.begin(), list.end());
-    return std::move(out_);
+  double operator[](std::size_t p) const {
+    return std::ldexp(static_cast<double>(sums_[p].load(std::memory_order_relaxed)), -kBits);
   }
 
  private:
-  std::span<const int> patches(NodeRef r) const {
-    if (is_cluster(r)) return tree_.patches(cluster_index(r));
-    return {&patch_ids_[static_cast<std::size_t>(r)], 1};
-  }
+  static constexpr int kBits = 44;
+  std::vector<std::atomic<std::uint64_t>> sums_;
+};
 
-  void visit_self(NodeRef r) {
-    if (!is_cluster(r)) return;
-    const Cluster& c = tree_.cluster(cluster_index(r));
-    visit_self(c.children[0]);
-    visit_self(c.children[1]);
-    visit(c.children[0], c.children[1]);
-  }
-
-  void visit(NodeRef a, NodeRef b) {
-    ++out_.cluster_pairs;
-    const NodeShape sa = transfer_.shape(a), sb = transfer_.shape(b);
-    const TransferBound bound = transfer_.bound(sa, sb);
-    if (bound.pq < threshold_ && bound.qp < threshold_) {
-      std::uint64_t ea = 0, eb = 0;
-      for (int p : patches(a))
-        if (eligible_[static_cast<std::size_t>(p)]) ++ea, out_.skipped_bound[static_cast<std::size_t>(p)] += bound.pq;
-      for (int q : patches(b))
-        if (eligible_[static_cast<std::size_t>(q)]) ++eb, out_.skipped_bound[static_cast<std::size_t>(q)] += bound.qp;
-      out_.skipped_pairs += ea * eb;
-      return;
-    }
-    if (!is_cluster(a) && !is_cluster(b)) {
-      if (eligible_[static_cast<std::size_t>(a)] && eligible_[static_cast<std::size_t>(b)])
-        out_.of_patch[static_cast<std::size_t>(std::min(a, b))].push_back(std::max(a, b));
-      return;
-    }
-    const bool open_a = is_cluster(a) && (!is_cluster(b) || sa.radius >= sb.radius);
-    const NodeRef split = open_a ? a : b, other = open_a ? b : a;
-    const Cluster& c = tree_.cluster(cluster_index(split));
-    visit(c.children[0], other);
-    visit(c.children[1], other);
-  }
-
-  const Scene& scene_;
-  const std::vector<char>& eligible_;
-  double threshold_;
-  ElementHierarchy hierarchy_;
-  ClusterTree tree_;
-  ClusterTransfer transfer_;
-  std::vector<int> patch_ids_ = [this] {
-    std::vector<int> ids(scene_.patches.size());
-    for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<int>(i);
-    return ids;
-  }();
-  Candidates out_;
+// What the matrix keeps of one pair's result.
+struct PairValue {
+  int q;
+  double exchange, error;
 };
 
 struct RowResult {
-  std::vector<std::pair<int, PairExchange>> pairs;  // nonzero exchanges with q > p
-  std::vector<std::pair<int, double>> deferred;     // partly visible pairs (q > p) and their unoccluded exchange
+  std::vector<PairValue> pairs;                  // q > p with a nonzero exchange or error
+  std::vector<std::pair<int, double>> deferred;  // partly visible pairs (q > p) and their unoccluded exchange
   ViewFactorCounters counters;
 };
 
@@ -212,20 +152,21 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
   ViewFactorCounters& c = m.counters;
   c.patch_pairs = eligible_count * (eligible_count - (eligible_count > 0 ? 1 : 0)) / 2;
 
-  Candidates candidates;
-  const bool pruned = options.threshold > 0.0 && np > 1;
-  if (pruned) {
-    candidates = BoundedPairs(scene, eligible, options.threshold).run();
-    c.skipped_pairs = candidates.skipped_pairs;
-    c.cluster_pairs = candidates.cluster_pairs;
-  }
+  // With a threshold, a pair is dropped when a bound of its unobstructed factors is below it both
+  // ways: first the cheap bound (pair_bound.h), then the closed form (pair_exchange()).
+  const bool pruned = options.threshold > 0.0;
+  PairExchangeOptions pair_options = options.pair;
+  pair_options.threshold = options.threshold;
+  pair_options.sample_below = options.sample_below;
+  const std::vector<PatchBoundShape> shapes = pruned ? patch_bound_shapes(scene) : std::vector<PatchBoundShape>{};
+  BoundSums dropped(pruned ? np : 0);
   std::vector<std::uint64_t> row_pairs(np, 0);
   std::uint64_t total = 0;
   {
     std::uint64_t later = eligible_count;
     for (std::size_t p = 0; p < np; ++p) {
       if (eligible[p]) --later;
-      row_pairs[p] = !eligible[p] ? 0 : pruned ? candidates.of_patch[p].size() : later;
+      row_pairs[p] = eligible[p] ? later : 0;
       total += row_pairs[p];
     }
   }
@@ -235,16 +176,17 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
   // the same bits at any thread count.
   std::vector<std::vector<std::pair<int, double>>> upper(static_cast<std::size_t>(n));
   std::vector<double> variance(static_cast<std::size_t>(n), 0.0);
-  auto add = [&](std::size_t p, int q, const PairExchange& e) {
+  // A pair sampled to exchange 0 adds its error to the rows but no entry.
+  auto add = [&](std::size_t p, int q, double exchange, double error) {
     const int u = unit[p], v = unit[static_cast<std::size_t>(q)];
     if (u == v) {
       const double m = same_unit_multiplier(u, v);
-      upper[static_cast<std::size_t>(u)].emplace_back(u, m * e.exchange);
-      variance[static_cast<std::size_t>(u)] += m * m * e.error * e.error;
+      if (exchange > 0.0) upper[static_cast<std::size_t>(u)].emplace_back(u, m * exchange);
+      variance[static_cast<std::size_t>(u)] += m * m * error * error;
     } else {
-      upper[static_cast<std::size_t>(std::min(u, v))].emplace_back(std::max(u, v), e.exchange);
-      variance[static_cast<std::size_t>(u)] += e.error * e.error;
-      variance[static_cast<std::size_t>(v)] += e.error * e.error;
+      if (exchange > 0.0) upper[static_cast<std::size_t>(std::min(u, v))].emplace_back(std::max(u, v), exchange);
+      variance[static_cast<std::size_t>(u)] += error * error;
+      variance[static_cast<std::size_t>(v)] += error * error;
     }
   };
   const bool defer = options.row_error > 0.0 && options.pair.partial == PartialVisibility::kSampled;
@@ -261,9 +203,27 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
           if (!eligible[p]) continue;
           RowResult& row = rows[p - begin];
           auto one = [&](int q) {
-            const PairExchange e = defer ? classify_pair(evaluator, static_cast<int>(p), q, options.pair)
-                                         : pair_exchange(evaluator, static_cast<int>(p), q, options.pair);
             ViewFactorCounters& k = row.counters;
+            if (pruned) {
+              // A zero bound (facing away in floating point) is left to the exact test.
+              const FactorBound b = factor_bound(shapes[p], shapes[static_cast<std::size_t>(q)]);
+              if ((b.pq > 0.0 || b.qp > 0.0) && b.pq < options.threshold && b.qp < options.threshold) {
+                ++k.skipped_pairs;
+                dropped.add(p, b.pq);
+                dropped.add(static_cast<std::size_t>(q), b.qp);
+                return;
+              }
+            }
+            const PairExchange e = defer ? classify_pair(evaluator, static_cast<int>(p), q, pair_options)
+                                         : pair_exchange(evaluator, static_cast<int>(p), q, pair_options);
+            k.closed_forms += static_cast<std::uint64_t>(e.closed_forms);
+            if (e.dropped) {
+              ++k.skipped_pairs;
+              ++k.dropped_by_closed_form;
+              dropped.add(p, e.dropped_pq);
+              dropped.add(static_cast<std::size_t>(q), e.dropped_qp);
+              return;
+            }
             switch (e.pair_class) {
               case PairClass::kFacingAway:
                 ++k.facing_away;
@@ -278,33 +238,32 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
                 ++k.partial;
                 break;
             }
-            k.closed_forms += e.evaluated ? 1 : 0;
             k.rays += static_cast<std::uint64_t>(e.rays);
             k.regions += static_cast<std::uint64_t>(e.regions);
-            if (defer && e.pair_class == PairClass::kPartial && e.unoccluded > 0.0)
+            k.shaft_skipped += e.shaft_skipped ? 1 : 0;
+            if (defer && e.pair_class == PairClass::kPartial && e.unoccluded > 0.0 && !e.shaft_skipped)
               row.deferred.emplace_back(q, e.unoccluded);
             else if (e.exchange > 0.0 || e.error > 0.0)
-              row.pairs.emplace_back(q, e);
+              row.pairs.push_back({q, e.exchange, e.error});
           };
-          if (pruned) {
-            for (int q : candidates.of_patch[p]) one(q);
-          } else {
-            for (std::size_t q = p + 1; q < np; ++q)
-              if (eligible[q]) one(static_cast<int>(q));
-          }
+          for (std::size_t q = p + 1; q < np; ++q)
+            if (eligible[q]) one(static_cast<int>(q));
           progress.advance(row_pairs[p]);
         }
       });
     });
     for (std::size_t p = begin; p < end; ++p) {
       RowResult& row = rows[p - begin];
-      for (const auto& [q, e] : row.pairs) add(p, q, e);
+      for (const PairValue& e : row.pairs) add(p, e.q, e.exchange, e.error);
       for (const auto& [q, unoccluded] : row.deferred) deferred.push_back({static_cast<int>(p), q, unoccluded});
       c.facing_away += row.counters.facing_away;
       c.fully_visible += row.counters.fully_visible;
       c.fully_hidden += row.counters.fully_hidden;
       c.partial += row.counters.partial;
       c.closed_forms += row.counters.closed_forms;
+      c.skipped_pairs += row.counters.skipped_pairs;
+      c.dropped_by_closed_form += row.counters.dropped_by_closed_form;
+      c.shaft_skipped += row.counters.shaft_skipped;
       c.rays += row.counters.rays;
       c.regions += row.counters.regions;
     }
@@ -367,7 +326,7 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
     for (std::size_t k = 0; k < deferred.size(); ++k) {
       c.rays += static_cast<std::uint64_t>(sampled[k].rays);
       if (sampled[k].exchange > 0.0 || sampled[k].error > 0.0)
-        add(static_cast<std::size_t>(deferred[k].p), deferred[k].q, sampled[k]);
+        add(static_cast<std::size_t>(deferred[k].p), deferred[k].q, sampled[k].exchange, sampled[k].error);
     }
     std::vector<DeferredPair>().swap(deferred);
   }
@@ -422,7 +381,7 @@ ViewFactorMatrix compute_view_factors(const Scene& scene, const SurfaceUnits& un
     for (std::size_t p = 0; p < np; ++p)
       if (eligible[p])
         m.skipped_bound[static_cast<std::size_t>(unit[p])] +=
-            scene.patches[p].area * candidates.skipped_bound[p] / m.area[static_cast<std::size_t>(unit[p])];
+            scene.patches[p].area * dropped[p] / m.area[static_cast<std::size_t>(unit[p])];
   c.seconds = clock.seconds();
   return m;
 }

@@ -7,10 +7,10 @@
 //     exactly (fully visible or hidden) sum to 1 to the closed form's accuracy; an open model's
 //     remainder 1 - sum_v F_uv is what the face sends to the sky;
 //   * no dependence on the unit of length and no epsilon offsets (pair_exchange.h).
-// With a threshold, the clustered hierarchy (cluster_tree.h) bounds whole blocks of pairs
-// (ClusterTransfer::bound(): F <= Aproj_max / (pi d_min^2)) and skips those whose factor cannot
-// reach the threshold in either direction; each row reports the sum of its skipped bounds, the most
-// factor it could have lost.
+// With a threshold T, a pair whose unobstructed factors are below T both ways is dropped before
+// its shaft test: first by a cheap bound from distance and heights (pair_bound.h), then by its
+// closed form. Each row reports the sum of what it dropped (those bounds), the most factor it could
+// have lost: its row sum plus that bound is at least its true row sum.
 #pragma once
 
 #include <cstdint>
@@ -25,8 +25,11 @@ namespace hrad {
 
 struct ViewFactorOptions {
   PairExchangeOptions pair;
-  /// Skip blocks of patch pairs whose factor bound is below this in both directions (0: none).
+  /// Drop pairs whose unobstructed factor is below this in both directions (0: none).
   double threshold = 0.0;
+  /// Pairs whose unobstructed factor is below this both ways (and at least the threshold) skip the
+  /// shaft test and are sampled with pair.far_rays rays against the whole scene (0: none).
+  double sample_below = 0.0;
   /// When > 0 (sampled partial visibility): the target standard error of each row sum's sampled
   /// part, in factor units, instead of pair.fraction_error per pair. Partly visible pairs are
   /// sampled after all pairs are classified, each with rays in proportion to its unoccluded
@@ -40,15 +43,16 @@ struct ViewFactorOptions {
 };
 
 struct ViewFactorCounters {
-  std::uint64_t patch_pairs = 0;    ///< unordered pairs of patches that both have a unit
-  std::uint64_t skipped_pairs = 0;  ///< of those, skipped by the cluster bound
+  std::uint64_t patch_pairs = 0;             ///< unordered pairs of patches that both have a unit
+  std::uint64_t skipped_pairs = 0;           ///< of those, dropped below the threshold (no shaft test)
+  std::uint64_t dropped_by_closed_form = 0;  ///< of those, by the closed form (the rest by the cheap bound)
+  std::uint64_t shaft_skipped = 0;  ///< below sample_below: sampled against the whole scene (counted in partial)
   std::uint64_t facing_away = 0;    ///< culled: exactly 0 without a kernel call
   std::uint64_t fully_visible = 0, fully_hidden = 0, partial = 0;
-  std::uint64_t closed_forms = 0;   ///< polygon_to_polygon() calls
-  std::uint64_t rays = 0;           ///< segments cast for partly visible pairs
-  double classify_seconds = 0.0;    ///< classification and closed forms (with row_error: before sampling)
-  std::uint64_t regions = 0;        ///< exact visible regions computed
-  std::uint64_t cluster_pairs = 0;  ///< node pairs the bounded traversal visited
+  std::uint64_t closed_forms = 0;  ///< polygon_to_polygon() calls
+  std::uint64_t rays = 0;          ///< segments cast for partly visible pairs
+  double classify_seconds = 0.0;   ///< classification and closed forms (with row_error: before sampling)
+  std::uint64_t regions = 0;       ///< exact visible regions computed
   double seconds = 0.0;
 };
 
