@@ -1,5 +1,5 @@
 // Pair throughput of the view-factor matrix (pair_exchange(): classification, closed form,
-// sampled visible fraction) on a generated urban scene, and the whole bounded matrix.
+// sampled visible fraction) on a generated urban scene, and the whole matrix with the large-model options.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -37,15 +37,19 @@ void BM_UrbanPairs(benchmark::State& state) {
 }
 BENCHMARK(BM_UrbanPairs)->Arg(2000)->Unit(benchmark::kMicrosecond);
 
+// The whole matrix with a threshold; the second argument 1 also samples far pairs (sample_below)
+// without shaft tests, the large-model setting.
 void BM_UrbanMatrix(benchmark::State& state) {
   const Scene& s = urban(static_cast<int>(state.range(0)));
   ViewFactorOptions o;
-  o.threshold = 1e-3;
+  o.threshold = 1e-5;
+  o.row_error = 0.01;
+  if (state.range(1) != 0) o.sample_below = 1e-3;
   for (auto _ : state) benchmark::DoNotOptimize(compute_view_factors(s, face_units(s), o).nonzeros());
   state.SetItemsProcessed(state.iterations() *
                           static_cast<std::int64_t>(s.patches.size() * (s.patches.size() - 1) / 2));
 }
-BENCHMARK(BM_UrbanMatrix)->Arg(500)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_UrbanMatrix)->Args({500, 0})->Args({500, 1})->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 }  // namespace hrad

@@ -86,7 +86,8 @@ TEST(CliViewFactors, BadOptionsAreOneLineErrorsWithNothingWritten) {
   const std::string out = dir.path("F.csv");
   for (const std::string& bad :
        {std::string("--by zone"), std::string("--threshold 2"), std::string("--visibility-error 0"),
-        std::string("--format xml"), std::string("--max-rays 3")}) {
+        std::string("--format xml"), std::string("--max-rays 3"), std::string("--sample-below 1"),
+        std::string("--far-rays 2")}) {
     const RunResult r = run_hrad("viewfactors " + scene + " --out " + out + " " + bad, dir);
     EXPECT_NE(r.exit_code, 0) << bad;
     ASSERT_EQ(r.err_lines().size(), 1u) << r.err;
