@@ -27,7 +27,7 @@ constexpr double kLinkAbsoluteTolerance = 1e-9;
 // Rays per facing patch of a cluster link's ends for the part of the other end it sees
 // (ErrorBoundOracle::decide_with_cluster()).
 constexpr int kFacingRays = 4;
-// The sample stream of an element link's visible fraction, independent of the test's (stream 0).
+// The sample stream of an element link's visible fraction, independent of the test's rays.
 constexpr std::uint64_t kLinkedFractionStream = 11;
 // The sampling error of an element link's power, as a share of the scene's, that its visible
 // fraction's point pairs aim for, and the most pairs it takes for it (times --visibility-samples).
@@ -360,12 +360,10 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
         }
       }
     }
-    sample(rays_per_point_, 3);
-    // The test's visible fraction from point pairs stratified over both elements: unbiased, where
-    // the points above sample where a shadow boundary lies but weigh the element's boundary as
-    // their quadrature does, which over- or underestimates a shadow that hugs it.
-    fraction =
-        evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, c.found_occluders.get(), pair_samples_);
+    // The test reads the fraction the points' own rays give (their quadrature of the visible point
+    // factors, which weighs the elements' boundaries as the quadrature does); the link's fraction
+    // comes from point pairs of its own below.
+    fraction = sample(rays_per_point_, 3);
     c.partial = true;
   }
   // The link carries the factor's shape over each side (push_pull.h); its error is bounded by how
