@@ -12,6 +12,7 @@
 #include "hrad/core/error.h"
 #include "hrad/core/rng.h"
 #include "hrad/formfactor/point_to_polygon.h"
+#include "hrad/gather/from_point.h"
 
 namespace hrad {
 namespace {
@@ -194,6 +195,33 @@ TEST(LeafGather, PartlyVisibleNodesAreSampledLeafByLeaf) {
 // The shared rays (PartialVisibility::shared, the image's estimator) are unbiased: over many
 // seeds their mean approaches the exact gather within a few standard errors, at a point whose
 // view of several patches is partly blocked.
+// Shared rays are allocated by systematic sampling: every entry gets the integer part of its
+// expected count m w_i / W or one more, the counts sum to m, and over many offsets each entry's
+// mean count is its expected count (to the Monte Carlo error of 4000 draws).
+TEST(LeafGather, SystematicCountsKeepEachEntrysExpectedCount) {
+  const std::vector<double> w = {0.5, 3.0, 0.0, 1.25, 7.0, 0.05};
+  const double total = 11.8;
+  const int m = 37;
+  std::vector<double> mean(w.size(), 0.0);
+  std::vector<int> counts;
+  const int draws = 4000;
+  for (int d = 0; d < draws; ++d) {
+    EXPECT_DOUBLE_EQ(detail::systematic_counts(w, m, static_cast<std::uint64_t>(d), &counts), total / m);
+    int sum = 0;
+    for (std::size_t i = 0; i < w.size(); ++i) {
+      const double expected = m * w[i] / total;
+      EXPECT_GE(counts[i], std::floor(expected)) << i;
+      EXPECT_LE(counts[i], std::ceil(expected)) << i;
+      sum += counts[i];
+      mean[i] += counts[i] / double(draws);
+    }
+    EXPECT_EQ(sum, m);
+  }
+  for (std::size_t i = 0; i < w.size(); ++i) EXPECT_NEAR(mean[i], m * w[i] / total, 0.05) << i;
+  EXPECT_EQ(detail::systematic_counts(std::vector<double>{0.0, 0.0}, m, 1, &counts), 0.0);
+  EXPECT_EQ(counts, (std::vector<int>{0, 0}));
+}
+
 TEST(LeafGather, SharedRaysAreUnbiased) {
   Scene box = make_box(3, 2.5, 4, {material(Rgb::Constant(0.5), Rgb::Zero())}, {0, 0, 0, 0, 0, 0});
   add_block(box, 1.0, 2.0, 0.0, 1.4, 1.5, 2.5, 0);

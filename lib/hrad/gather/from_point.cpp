@@ -67,4 +67,20 @@ double weighted_fraction(const Visibility& visibility, const Vec3& x, const Vec3
   return visible / weight;
 }
 
+double systematic_counts(std::span<const double> importance, int m, std::uint64_t seed, std::vector<int>* counts) {
+  counts->assign(importance.size(), 0);
+  double total = 0.0;
+  for (const double v : importance) total += v;
+  if (!(total > 0.0)) return 0.0;
+  Rng rng(seed);
+  const double offset = rng.uniform();
+  double before = 0.0;
+  for (std::size_t i = 0; i < importance.size(); ++i) {
+    const double after = before + importance[i];
+    (*counts)[i] = static_cast<int>(std::ceil(after / total * m - offset) - std::ceil(before / total * m - offset));
+    before = after;
+  }
+  return total / m;
+}
+
 }  // namespace hrad::detail

@@ -33,4 +33,10 @@ double weighted_fraction(const Visibility& visibility, const Vec3& x, const Vec3
                          std::span<const Vec3> polygon, const Vec3& ny, int patch_y, const std::vector<int>* occluders,
                          int samples, std::uint64_t seed, std::vector<Vec2>& uv);
 
+/// Systematic sampling of `m` rays over entries of importance w_i >= 0 (W their sum): with an offset
+/// u uniform in [0, 1) drawn from `seed`, entry i gets ceil(S_i m / W - u) - ceil(S_{i-1} m / W - u)
+/// rays (S_i the partial sums), the integer part of its expected count m w_i / W or one more, the
+/// counts summing to m (Madow 1949). Returns W / m, what one ray stands for; W = 0: every count 0.
+double systematic_counts(std::span<const double> importance, int m, std::uint64_t seed, std::vector<int>* counts);
+
 }  // namespace hrad::detail

@@ -56,6 +56,8 @@ struct LeafGather::Scratch {
   };
   std::vector<Partial> partial;
   std::vector<int> partial_occluders;
+  std::vector<double> importance;
+  std::vector<int> counts;
   std::vector<int>& occluders_at(std::size_t depth) { return occluders.at(depth); }
 };
 
@@ -214,17 +216,13 @@ Rgb LeafGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w, do
 
   if (!s.partial.empty()) {
     // Systematic sampling of m rays over the cumulative importance C (see the header).
-    double total = 0.0;
-    for (const Scratch::Partial& e : s.partial) total += e.importance;
-    const int m = options_.visibility_samples;
-    detail::Rng rng(detail::mix_seed(seed, 0xfeed));
-    const double offset = rng.uniform();
-    double before = 0.0;
-    for (const Scratch::Partial& e : s.partial) {
-      const double after = before + e.importance;
-      const int count =
-          static_cast<int>(std::ceil(after / total * m - offset) - std::ceil(before / total * m - offset));
-      before = after;
+    s.importance.clear();
+    for (const Scratch::Partial& e : s.partial) s.importance.push_back(e.importance);
+    const double per_ray =
+        detail::systematic_counts(s.importance, options_.visibility_samples, detail::mix_seed(seed, 0xfeed), &s.counts);
+    for (std::size_t i = 0; i < s.partial.size(); ++i) {
+      const Scratch::Partial& e = s.partial[i];
+      const int count = s.counts[i];
       if (count <= 0) continue;
       const std::span<const Vec3> polygon = trees_.polygon(e.node);
       const detail::LeafQuadtreeNode& node = trees_.node(e.node);
@@ -242,7 +240,7 @@ Rgb LeafGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w, do
       }
       w.rays += static_cast<std::uint64_t>(count);
       const double fraction = weight > 0.0 ? visible / weight : 0.0;
-      h += (total / m) * count * fraction * (node.mean / node.mean.sum());
+      h += per_ray * count * fraction * (node.mean / node.mean.sum());
     }
   }
   return h;
