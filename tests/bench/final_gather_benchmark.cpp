@@ -112,18 +112,25 @@ void BM_GatherPoints(benchmark::State& state) {
 }
 BENCHMARK(BM_GatherPoints)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kSecond)->Iterations(1);
 
-// The gather through the links (gather/link_gather.h) at the same points as BM_GatherPoints, each
-// partly visible source classified from the point and sampled on its own (the probes' mode):
-// compare its points/s and factors/point with BM_GatherPoints/1.
+// The gather through the links (gather/link_gather.h) at the same points as BM_GatherPoints
+// (args: fine solve, points per patch, classify each point, rays per partly visible source or, with
+// shared rays, per point, shared rays).
 void BM_LinkGatherPoints(benchmark::State& state) {
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
   const Solved& s = solved(state.range(0) != 0);
-  const LinkGather gather(cornell(), s.kept);
-  const std::vector<GatherPoint> points = surface_points(16);
+  LinkGatherOptions o;
+  o.classify_points = state.range(2) != 0;
+  o.visibility_samples = static_cast<int>(state.range(3));
+  o.partial = state.range(4) != 0 ? PartialVisibility::shared : PartialVisibility::per_node;
+  const LinkGather gather(cornell(), s.kept, o);
+  const std::vector<GatherPoint> points = surface_points(static_cast<int>(state.range(1)));
   for (auto _ : state) benchmark::DoNotOptimize(gather.gather(points).data());
   set_work(state, gather.work(), s.solution.faces.size());
 }
-BENCHMARK(BM_LinkGatherPoints)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_LinkGatherPoints)
+    ->ArgsProduct({{0, 1}, {16, 256}, {0, 1}, {16, 64, 256}, {0, 1}})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 
 void BM_LeafFactors(benchmark::State& state) {
   const Solution& s = solution(false);

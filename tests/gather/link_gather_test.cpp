@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -128,12 +129,14 @@ const Scene& cornell() {
 
 // The default hierarchical solve of the Cornell box (518 leaves), gathered at the error samples
 // both ways, each point's reflected light rho H compared in relative L2:
-//  * at the defaults the two gathers estimate the same sum (every source's leaves under the same
-//    Barnes-Hut tolerance, visibility from the point), each with its own visibility samples, so
-//    they differ by their sampling noise: at most the two gathers' own differences between two
-//    seeds added (two unbiased estimates with noise s1, s2 differ by about sqrt(s1^2 + s2^2),
-//    and one seed change by sqrt(2) s); a systematic difference (a source missed or counted twice,
-//    a link's visibility trusted where it does not hold) of that size fails;
+//  * at the defaults (rays shared by a point's partly visible sources, decided from its leaf) and
+//    per source (64 points on each, classified from the point) the two gathers estimate the same
+//    sum (every source's leaves under the same Barnes-Hut tolerance, visibility from the point),
+//    each with its own visibility samples, so they differ by their sampling noise: at most the two
+//    gathers' own differences between two seeds added (two unbiased estimates with noise s1, s2
+//    differ by about sqrt(s1^2 + s2^2), and one seed change by sqrt(2) s); a systematic difference
+//    (a source missed or counted twice, a link's or a leaf's visibility trusted where it does not
+//    hold) of that size fails;
 //  * with every source whole and only the links' own visibility (one point factor per link on the
 //    path: counted), the coarse sources' mean radiosity costs accuracy: within the 2% the gathered
 //    field is to reach against the reference, with fewer factors than the all-patches gather.
@@ -158,15 +161,25 @@ TEST(LinkGather, CornellBoxAgreesWithTheAllPatchesGather) {
   const std::vector<Rgb> h_all = reflected(all.gather(points));
   const std::vector<Rgb> h_all_2 = reflected(LeafGather(cornell(), solution, other_seed).gather(points));
 
-  LinkGatherOptions o, o_2;
-  o_2.seed = 2;
-  const std::vector<Rgb> h_links = reflected(LinkGather(cornell(), kept, o).gather(points));
-  const std::vector<Rgb> h_links_2 = reflected(LinkGather(cornell(), kept, o_2).gather(points));
-  const double noise = l2(h_all, h_all_2) + l2(h_links, h_links_2);
-  std::printf("defaults: link vs all-patches gather %.4g (seed to seed: all-patches %.4g, links %.4g)\n",
-              l2(h_links, h_all), l2(h_all, h_all_2), l2(h_links, h_links_2));
   EXPECT_GT(l2(h_all, h_all_2), 0.0);  // the visibility is sampled: the bound is not zero
-  EXPECT_LE(l2(h_links, h_all), noise);
+  LinkGatherOptions per_source;
+  per_source.partial = PartialVisibility::per_node;
+  per_source.visibility_samples = 64;
+  per_source.classify_points = true;
+  for (const LinkGatherOptions& o : {LinkGatherOptions{}, per_source}) {
+    LinkGatherOptions o_2 = o;
+    o_2.seed = 2;
+    const LinkGather links(cornell(), kept, o);
+    const std::vector<Rgb> h_links = reflected(links.gather(points));
+    const std::vector<Rgb> h_links_2 = reflected(LinkGather(cornell(), kept, o_2).gather(points));
+    const double noise = l2(h_all, h_all_2) + l2(h_links, h_links_2);
+    std::printf(
+        "%s: link vs all-patches gather %.4g (seed to seed: all-patches %.4g, links %.4g); rays per point %.0f "
+        "vs %.0f\n",
+        o.partial == PartialVisibility::shared ? "shared rays" : "per source", l2(h_links, h_all), l2(h_all, h_all_2),
+        l2(h_links, h_links_2), double(links.work().rays) / points.size(), double(all.work().rays) / points.size());
+    EXPECT_LE(l2(h_links, h_all), noise);
+  }
 
   LinkGatherOptions whole;
   whole.tolerance = std::numeric_limits<double>::infinity();
@@ -178,6 +191,35 @@ TEST(LinkGather, CornellBoxAgreesWithTheAllPatchesGather) {
               double(coarse.work().node_visits) / points.size(), double(all.work().node_visits) / points.size());
   EXPECT_LT(coarse.work().node_visits, all.work().node_visits);
   EXPECT_LT(l2(h_whole, h_all), 0.02);
+}
+
+// A leaf's points share its classifications (each source once from the leaf, not once per point),
+// not their values: gathered together, points on the Cornell box's floor around the blocks (where
+// sources are partly visible) get exactly what each gets gathered alone, with fewer shaft tests.
+TEST(LinkGather, PointsOfALeafShareItsClassificationsNotTheirValues) {
+  Solution solution;
+  const SolvedHierarchy kept = solve_keeping(cornell(), SolveOptions{}, &solution);
+  std::vector<GatherPoint> points;
+  int floor = -1;
+  for (std::size_t q = 0; q < cornell().patches.size(); ++q)
+    if (cornell().patches[q].normal.y() > 0.99 &&
+        (floor < 0 || cornell().patches[q].area > cornell().patches[static_cast<std::size_t>(floor)].area))
+      floor = static_cast<int>(q);
+  ASSERT_GE(floor, 0);
+  for (const SurfaceSample& s : patch_samples(cornell(), 144))
+    if (s.patch == floor) points.push_back({s.position, Vec3::UnitY(), s.patch});
+  const LinkGather together(cornell(), kept), alone(cornell(), kept);
+  const std::vector<Rgb> h = together.gather(points);
+  std::set<NodeId> leaves;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    leaves.insert(together.leaf_at(points[i].patch, points[i].position));
+    const Rgb single = alone.gather(std::span<const GatherPoint>(&points[i], 1))[0];
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(h[i][c], single[c]) << i;
+  }
+  ASSERT_LT(leaves.size(), points.size());  // some leaf holds several points
+  EXPECT_GT(together.work().rays, 0u);      // some source is partly visible
+  EXPECT_EQ(together.work().rays, alone.work().rays);
+  EXPECT_LT(together.work().classifications, alone.work().classifications);
 }
 
 TEST(LinkGather, BadOptionsNameTheOption) {

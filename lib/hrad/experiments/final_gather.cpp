@@ -24,7 +24,7 @@ std::vector<Rgb> final_gather_reflected(const Scene& scene, const Solution& solu
   if (options.links != nullptr && options.links->hierarchy != nullptr) {
     LinkGatherOptions l;
     l.tolerance = options.tolerance;
-    l.visibility_samples = options.visibility_samples;
+    l.visibility_samples = options.link_rays;
     gather = std::make_unique<LinkGather>(scene, *options.links, l);
   } else {
     gather = std::make_unique<LeafGather>(scene, solution, o);

@@ -19,6 +19,7 @@
 #include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
 #include "hrad/gather/final_gather.h"
+#include "hrad/gather/link_gather.h"
 #include "hrad/solvers/solved_hierarchy.h"
 
 namespace hrad {
@@ -30,6 +31,9 @@ struct FinalGatherOptions {
   /// Stratified points per leaf when the leaf is partly visible from x; leaves classified fully
   /// visible or hidden from x need none.
   int visibility_samples = 64;
+  /// Rays per point of the gather through the links, shared by the point's partly visible sources
+  /// (LinkGatherOptions::visibility_samples).
+  int link_rays = LinkGatherOptions{}.visibility_samples;
   int threads = 0;  ///< 0 = all cores
   /// A hierarchical solve's hierarchy and links: gather through them (gather/link_gather.h) instead
   /// of over every patch; null (or another method's solve) gathers over every patch.

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "hrad/core/error.h"
@@ -27,9 +28,31 @@ struct LinkGather::Source {
 };
 
 struct LinkGather::Scratch {
+  // The leaf whose points are being gathered, and per element the class of the pair (leaf, element)
+  // with its occluders, valid where `classified` equals `group` (the leaf's turn).
+  NodeId leaf = kNoNode;
+  std::uint32_t group = 0;
+  std::vector<std::uint32_t> classified;
+  std::vector<PairClass> leaf_class;
+  std::vector<std::vector<int>> leaf_occluders;
+  // Per source patch, the pair (the leaf's patch, that patch) looked up in patch_pairs_, valid where
+  // `patch_found` equals `patch_group` (the leaf's patch's turn).
+  std::uint32_t patch_group = 0;
+  std::vector<std::uint32_t> patch_found;
+  std::vector<const PatchPair*> patch_pair;
   std::vector<std::size_t> path;
   std::vector<int> occluders;
   std::vector<Vec2> uv;
+  // A point's partly visible sources when their rays are shared (PartialVisibility::shared).
+  struct Partial {
+    NodeId node = kNoNode;
+    double factor = 0.0;
+    std::size_t first_occluder = 0, occluder_count = 0;
+  };
+  std::vector<Partial> partial;
+  std::vector<int> partial_occluders;
+  std::vector<double> importance;
+  std::vector<int> counts;
   // Per element, the last point (stamp) for which it was a link source on the path (`source`) or an
   // ancestor of one (`above`).
   std::vector<std::uint32_t> source, above;
@@ -181,6 +204,49 @@ PairClass LinkGather::pair_class(std::size_t receiver, std::uint64_t k, GatherWo
   return static_cast<PairClass>(c);
 }
 
+const LinkGather::PatchPair& LinkGather::patch_pair(int p, int q, GatherWork& w) const {
+  const std::uint64_t key = static_cast<std::uint64_t>(p) << 32 | static_cast<std::uint32_t>(q);
+  const auto found = patch_pairs_.find(key);
+  if (found != patch_pairs_.end()) return found->second;
+  // Deterministic, so two threads that classify the same pair at once find the same class; only
+  // the one that inserts it counts the classification.
+  const ElementHierarchy& h = *solved_.hierarchy;
+  PatchPair pair;
+  pair.cls = visibility_->classify_among(h.node(h.root(p)).polygon(), p, h.node(h.root(q)).polygon(), q, nullptr,
+                                         &pair.occluders);
+  const auto [at, inserted] = patch_pairs_.insert({key, std::move(pair)});
+  if (inserted) ++w.classifications;
+  return at->second;
+}
+
+PairClass LinkGather::leaf_class(NodeId id, const std::vector<int>* candidates, Scratch& s, GatherWork& w) const {
+  const std::size_t i = static_cast<std::size_t>(id);
+  if (s.classified[i] != s.group) {
+    const ElementHierarchy& h = *solved_.hierarchy;
+    const ElementNode& a = h.node(s.leaf);
+    const ElementNode& b = h.node(id);
+    if (!candidates) {
+      const std::size_t q = static_cast<std::size_t>(b.patch);
+      if (s.patch_found[q] != s.patch_group) {
+        s.patch_pair[q] = &patch_pair(a.patch, b.patch, w);
+        s.patch_found[q] = s.patch_group;
+      }
+      const PatchPair& pair = *s.patch_pair[q];
+      candidates = &pair.occluders;
+      if (is_blocking(pair.cls)) {  // so is every pair of their elements
+        s.leaf_class[i] = pair.cls;
+        s.classified[i] = s.group;
+        return s.leaf_class[i];
+      }
+    }
+    s.leaf_class[i] =
+        visibility_->classify_among(a.polygon(), a.patch, b.polygon(), b.patch, candidates, &s.leaf_occluders[i]);
+    s.classified[i] = s.group;
+    ++w.classifications;
+  }
+  return s.leaf_class[i];
+}
+
 Rgb LinkGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w) const {
   const ElementHierarchy& h = *solved_.hierarchy;
   const Vec3& x = p.position;
@@ -201,18 +267,27 @@ Rgb LinkGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w) co
   // no rays below it; still partial and split: opened, unless the options say otherwise); gathered
   // whole when its Barnes-Hut bound allows (see the header), else its children.
   const double tolerance = options_.tolerance * mean_radiosity_;
-  auto walk = [&](auto&& self, NodeId id, bool partial) -> void {
+  auto walk = [&](auto&& self, NodeId id, bool partial, const std::vector<int>* candidates) -> void {
     const ElementNode& node = h.node(id);
     if (!facing(node.polygon(), node.patch)) return;
     const Vec3& ny = scene_.patches[static_cast<std::size_t>(node.patch)].normal;
+    const std::vector<int>* occluders = nullptr;
     if (partial && occlusion_) {
-      const PairClass c = visibility_->classify_among(std::span<const Vec3>(&x, 1), p.patch, node.polygon(), node.patch,
-                                                      nullptr, &s.occluders);
-      ++w.classifications;
+      // First from x's leaf, shared by the leaf's points (a leaf that sees all or none of the node
+      // decides every point on it), then from x where the leaf sees part of it.
+      PairClass c = leaf_class(id, candidates, s, w);
+      occluders = &s.leaf_occluders[static_cast<std::size_t>(id)];
+      if (c == PairClass::kPartial && options_.classify_points) {
+        c = visibility_->classify_among(std::span<const Vec3>(&x, 1), p.patch, node.polygon(), node.patch, occluders,
+                                        &s.occluders);
+        ++w.classifications;
+        if (c == PairClass::kPartial) occluders = &s.occluders;
+      }
       if (is_blocking(c)) return;
       partial = c == PairClass::kPartial;
       if (partial && !node.is_leaf() && options_.open_partly_visible) {
-        for (NodeId child = node.first_child; child < node.first_child + 4; ++child) self(self, child, true);
+        const std::vector<int>* below = &s.leaf_occluders[static_cast<std::size_t>(id)];
+        for (NodeId child = node.first_child; child < node.first_child + 4; ++child) self(self, child, true, below);
         return;
       }
     }
@@ -230,7 +305,8 @@ Rgb LinkGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w) co
       }
     }
     if (!whole) {
-      for (NodeId child = node.first_child; child < node.first_child + 4; ++child) self(self, child, partial);
+      for (NodeId child = node.first_child; child < node.first_child + 4; ++child)
+        self(self, child, partial, partial && occlusion_ ? &s.leaf_occluders[static_cast<std::size_t>(id)] : nullptr);
       return;
     }
     if (f < 0.0) {
@@ -244,14 +320,25 @@ Rgb LinkGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w) co
       sum += f * node.radiosity;
       return;
     }
-    // Partly visible from x (s.occluders: its classification's, the last one made).
+    // Partly visible from x's leaf (and from x when classified): only `occluders` can block.
+    if (options_.partial == PartialVisibility::shared) {
+      const double importance = f * node.radiosity.sum();
+      if (!(importance > 0.0)) return;
+      s.partial.push_back({id, f, s.partial_occluders.size(), occluders ? occluders->size() : 0});
+      if (occluders) s.partial_occluders.insert(s.partial_occluders.end(), occluders->begin(), occluders->end());
+      s.importance.push_back(importance);
+      return;
+    }
     const int k = options_.visibility_samples;
     w.rays += static_cast<std::uint64_t>(k);
     sum += f * node.radiosity *
-           detail::weighted_fraction(*visibility_, x, n, p.patch, node.polygon(), ny, node.patch, &s.occluders, k,
+           detail::weighted_fraction(*visibility_, x, n, p.patch, node.polygon(), ny, node.patch, occluders, k,
                                      detail::mix_seed(seed, static_cast<std::uint64_t>(id)), s.uv);
   };
-  path(leaf_at(p.patch, x), &s.path);
+  s.partial.clear();
+  s.partial_occluders.clear();
+  s.importance.clear();
+  path(s.leaf, &s.path);
   if (options_.gather_uncovered && s.source.size() != h.size()) {
     s.source.assign(h.size(), 0);
     s.above.assign(h.size(), 0);
@@ -275,18 +362,17 @@ Rgb LinkGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w) co
         mark(e.node);
         const PairClass c = pair_class(r, k, w);
         if (is_blocking(c)) continue;
-        walk(walk, e.node, c == PairClass::kPartial);
+        walk(walk, e.node, c == PairClass::kPartial, nullptr);
         continue;
       }
       for (int q : solved_.tree->patches(cluster_index(e.node))) {
         if (q == p.patch || listed(e.source_hidden, q)) continue;
         ++w.patch_visits;
         mark(h.root(q));
-        walk(walk, h.root(q), true);
+        walk(walk, h.root(q), true, nullptr);
       }
     }
   }
-  if (!options_.gather_uncovered) return sum;
   // What no link on the path covers: pairs the refinement dropped (hidden by its rays, facing away,
   // coplanar), gathered with visibility decided from x (see the header).
   auto uncovered = [&](auto&& self, NodeId id) -> void {
@@ -294,15 +380,35 @@ Rgb LinkGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w) co
     if (s.source[i] == stamp) return;
     if (s.above[i] != stamp) {
       ++w.uncovered;
-      walk(walk, id, true);
+      walk(walk, id, true, nullptr);
       return;
     }
     const ElementNode& node = h.node(id);
     for (NodeId child = node.first_child; child < node.first_child + 4; ++child) self(self, child);
   };
-  for (int q = 0; q < h.patch_count(); ++q) {
-    if (q == p.patch || !facing(h.node(h.root(q)).polygon(), q)) continue;
-    uncovered(uncovered, h.root(q));
+  if (options_.gather_uncovered)
+    for (int q = 0; q < h.patch_count(); ++q) {
+      if (q == p.patch || !facing(h.node(h.root(q)).polygon(), q)) continue;
+      uncovered(uncovered, h.root(q));
+    }
+  if (s.partial.empty()) return sum;
+  // Shared rays: systematic sampling over the partly visible sources' unoccluded contributions C_i
+  // (C their sum); source i with m_i of the m rays adds C / m * m_i * its visible fraction, an
+  // estimate of C_i V_i (as leaf_gather.h).
+  const double per_ray =
+      detail::systematic_counts(s.importance, options_.visibility_samples, detail::mix_seed(seed, 0xfeed), &s.counts);
+  for (std::size_t i = 0; i < s.partial.size(); ++i) {
+    if (s.counts[i] <= 0) continue;
+    const Scratch::Partial& e = s.partial[i];
+    const ElementNode& node = h.node(e.node);
+    const Vec3& ny = scene_.patches[static_cast<std::size_t>(node.patch)].normal;
+    s.occluders.assign(s.partial_occluders.begin() + static_cast<std::ptrdiff_t>(e.first_occluder),
+                       s.partial_occluders.begin() + static_cast<std::ptrdiff_t>(e.first_occluder + e.occluder_count));
+    w.rays += static_cast<std::uint64_t>(s.counts[i]);
+    const double fraction = detail::weighted_fraction(*visibility_, x, n, p.patch, node.polygon(), ny, node.patch,
+                                                      occlusion_ ? &s.occluders : nullptr, s.counts[i],
+                                                      detail::mix_seed(seed, static_cast<std::uint64_t>(e.node)), s.uv);
+    sum += per_ray * s.counts[i] * fraction * (node.radiosity / node.radiosity.sum());
   }
   return sum;
 }
@@ -322,15 +428,53 @@ std::vector<Rgb> LinkGather::gather(std::span<const GatherPoint> points, Progres
     const std::vector<Rgb> h = in_space_->gather(in_space, progress);
     for (std::size_t i = 0; i < in_space.size(); ++i) out[in_space_at[i]] = h[i];
   }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 16),
+  // The points on patches, grouped by leaf: a leaf's points share its classifications.
+  const ElementHierarchy& h = *solved_.hierarchy;
+  std::vector<std::pair<NodeId, std::size_t>> order;
+  order.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (points[i].patch >= 0) order.emplace_back(kNoNode, i);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-                      Scratch scratch;
+                      for (std::size_t j = r.begin(); j != r.end(); ++j) {
+                        const GatherPoint& p = points[order[j].second];
+                        order[j].first = leaf_at(p.patch, p.position);
+                      }
+                    });
+  // By patch, then leaf: a thread's consecutive leaves share their patch's pairs.
+  std::sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
+    const int pa = h.node(a.first).patch, pb = h.node(b.first).patch;
+    return pa != pb ? pa < pb : a < b;
+  });
+  std::vector<std::size_t> groups;  // where each leaf's points start in `order`
+  for (std::size_t j = 0; j < order.size(); ++j)
+    if (j == 0 || order[j].first != order[j - 1].first) groups.push_back(j);
+  groups.push_back(order.size());
+  tbb::enumerable_thread_specific<Scratch> scratches([&] {
+    Scratch s;
+    s.classified.assign(h.size(), 0);
+    s.leaf_class.assign(h.size(), PairClass::kPartial);
+    s.leaf_occluders.resize(h.size());
+    s.patch_found.assign(static_cast<std::size_t>(h.patch_count()), 0);
+    s.patch_pair.assign(static_cast<std::size_t>(h.patch_count()), nullptr);
+    s.leaf = kNoNode;
+    return s;
+  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups.size() - 1, 1),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      Scratch& scratch = scratches.local();
                       GatherWork local;
                       std::size_t done = 0;
-                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                        if (points[i].patch < 0) continue;
-                        out[i] = gather_point(points[i], scratch, local);
-                        ++done;
+                      for (std::size_t g = r.begin(); g != r.end(); ++g) {
+                        const NodeId leaf = order[groups[g]].first;
+                        if (scratch.leaf == kNoNode || h.node(leaf).patch != h.node(scratch.leaf).patch)
+                          ++scratch.patch_group;
+                        scratch.leaf = leaf;
+                        ++scratch.group;
+                        for (std::size_t j = groups[g]; j != groups[g + 1]; ++j) {
+                          out[order[j].second] = gather_point(points[order[j].second], scratch, local);
+                          ++done;
+                        }
                       }
                       {
                         const std::lock_guard<std::mutex> lock(work_mutex_);

@@ -12,12 +12,19 @@
 // is classified once for the whole pair (receiver polygon against source polygon, by shaft culling,
 // on first use; the refinement leaves a link unmarked also when it sampled the pair and every ray
 // passed, which a point near an occluder need not share): fully visible needs no ray, hidden
-// nothing. A partial link's source (and every link with a cluster end) is classified from x itself
-// (a shaft test, exact where it settles); where it stays partly visible it is opened down to its
-// leaves (open_partly_visible), each classified again, and a leaf still partly visible is sampled
-// by `visibility_samples` stratified points and rays, the kernel-weighted visible fraction
-// multiplying the factor (as leaf_gather.h per node). A cluster link lists the patches of either
-// end that see nothing of the other: those neither gather nor are gathered through it.
+// nothing. A partial link's source (and every link with a cluster end) is classified from x's leaf,
+// once for all the leaf's points (gather() groups the points by leaf; the shaft from the leaf holds
+// the shaft from each of its points, so a leaf that sees all or none of a source decides it for
+// every point on it), among the occluders of the two patches' pair (classified once per pair).
+// Where the leaf sees part of it, it is opened down to its leaves (open_partly_visible), each
+// classified from the leaf among its parent's occluders, and a leaf still partly visible is sampled
+// from x among those occluders: by default with rays shared by all of x's partly visible sources,
+// each source's share proportional to its unoccluded contribution F(x -> N) B_N (systematic
+// sampling; PartialVisibility::shared, as leaf_gather.h), or with `visibility_samples` stratified
+// points on each (per_node), the kernel-weighted visible fraction multiplying the factor.
+// classify_points adds a shaft test from x itself before sampling (no ray where x sees all or none
+// of the source): ~15 rays' cost per test, for less noise per ray. A cluster link lists the patches
+// of either end that see nothing of the other: those neither gather nor are gathered through it.
 //
 // Accuracy: a coarse link's source, taken whole, enters with its mean radiosity B_N; over its
 // leaves j that differs from gathering them one by one by
@@ -36,9 +43,9 @@
 // be a large part of what a point near the occluder receives (on the Cornell box's floor beside
 // the tall block, a fifth of what one point gets from the back wall). So each source patch in
 // front of x is walked from its root, skipping the link sources on the path, and every node that
-// no source covers or lies in is gathered as partly visible: classified from x (a shaft test;
-// fully hidden ones, usually all, cost nothing more), opened and sampled where partly visible.
-// This adds one plane test per patch and one shaft test per uncovered node to a point's cost.
+// no source covers or lies in is gathered as partly visible: classified from x's leaf (a shaft
+// test per leaf; fully hidden ones, usually all, cost nothing more), opened and sampled where
+// partly visible. This adds one plane test per patch to a point's cost.
 //
 // Points that lie on no patch have no leaf and no links: the gather hands them to `in_space`
 // (an all-patches LeafGather) when given, and refuses them otherwise.
@@ -51,8 +58,11 @@
 #include <span>
 #include <vector>
 
+#include <tbb/concurrent_unordered_map.h>
+
 #include "hrad/core/scene.h"
 #include "hrad/gather/final_gather.h"
+#include "hrad/gather/leaf_gather.h"
 #include "hrad/solvers/solved_hierarchy.h"
 #include "hrad/visibility/visibility.h"
 
@@ -62,14 +72,25 @@ struct LinkGatherOptions {
   /// The bound on opening a source (see above), relative to the mean radiosity; 0 gathers each
   /// source's leaves one by one, infinity each source whole.
   double tolerance = 1e-2;
-  /// Stratified points per partly visible source (as LeafGatherOptions::visibility_samples).
-  int visibility_samples = 64;
+  /// per_node: `visibility_samples` stratified points on each partly visible source; shared:
+  /// `visibility_samples` rays per point over all of them, each source's share proportional to its
+  /// unoccluded contribution (as LeafGatherOptions::partial).
+  PartialVisibility partial = PartialVisibility::shared;
+  /// Stratified points per partly visible source, or rays per point (see `partial`). Shared, on the
+  /// Cornell box's default solve at the sweep's samples: relative L2 to the sweep's reference 0.93%
+  /// at 512 rays a point, 0.97% at 256, 1.08% at 128 (per source with 64 points each: 0.92%, at
+  /// ~3200 rays a point).
+  int visibility_samples = 512;
   /// A split source still partly visible from the point is opened and its children classified
   /// (as leaf_gather.h per node): k points over a large source resolve a shadow edge across it
   /// far more coarsely than k points on each of its leaves. Off: sampled whole.
   bool open_partly_visible = true;
   /// Also gather what no link on the path covers (see the header). Off: the links' sources only.
   bool gather_uncovered = true;
+  /// A source partly visible from the point's leaf is classified again from the point before it is
+  /// sampled (fewer rays where the point sees all or none of it). Off: sampled among the leaf's
+  /// occluders, a shaft test saved per point and source.
+  bool classify_points = false;
   std::uint64_t seed = 1;
 };
 
@@ -99,12 +120,24 @@ class LinkGather final : public FinalGather {
  private:
   struct Source;
   struct Scratch;
+  /// A point on leaf s.leaf.
   Rgb gather_point(const GatherPoint& p, Scratch& s, GatherWork& w) const;
+  /// The class of the pair (s.leaf, element `id`), classified once per leaf's turn among
+  /// `candidates` (an enclosing pair's occluders; null: every patch); its occluders are kept in s.
+  PairClass leaf_class(NodeId id, const std::vector<int>* candidates, Scratch& s, GatherWork& w) const;
   /// The class of directed link k between elements (at dense receiver `receiver`): partial links are
   /// partial; the others are classified once, receiver polygon against source polygon, on first use
   /// (a link the refinement sampled and found unoccluded at every ray is not partial, yet may be).
   PairClass pair_class(std::size_t receiver, std::uint64_t k, GatherWork& w) const;
   static constexpr std::uint8_t kUnclassified = 0xff;
+  /// A pair of patches classified by shaft culling, with its occluders: complete candidates for
+  /// every pair of their elements.
+  struct PatchPair {
+    PairClass cls = PairClass::kPartial;
+    std::vector<int> occluders;
+  };
+  /// The pair (patch p, patch q), classified on first use.
+  const PatchPair& patch_pair(int p, int q, GatherWork& w) const;
   /// The receiver nodes on `leaf`'s path, as dense indices (elements, then clusters after them).
   void path(NodeId leaf, std::vector<std::size_t>* out) const;
 
@@ -117,6 +150,7 @@ class LinkGather final : public FinalGather {
   // Per dense receiver, its directed links' sources: [offsets_[r], offsets_[r + 1]) of sources_.
   std::vector<std::uint64_t> offsets_;
   std::vector<Source> sources_;
+  mutable tbb::concurrent_unordered_map<std::uint64_t, PatchPair> patch_pairs_;  ///< by p << 32 | q
   mutable std::unique_ptr<std::atomic<std::uint8_t>[]> pair_class_;  ///< per directed link: PairClass or kUnclassified
   std::vector<double> deviation_;          ///< per element: D_N (largest channel; 0 for a leaf)
   std::vector<std::uint32_t> leaf_count_;  ///< per element: the leaves below it (1 for a leaf)
