@@ -102,19 +102,26 @@ void BM_GatheredImage(benchmark::State& state) {
 }
 BENCHMARK(BM_GatheredImage)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1);
 
+// Args: mode, fine solve, points per patch (256: the sweep's error samples).
 void BM_GatherPoints(benchmark::State& state) {
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
   const Solution& s = solution(state.range(1) != 0);
   const LeafGather gather(cornell(), s, mode(static_cast<int>(state.range(0))));
-  const std::vector<GatherPoint> points = surface_points(16);
+  const std::vector<GatherPoint> points = surface_points(static_cast<int>(state.range(2)));
   for (auto _ : state) benchmark::DoNotOptimize(gather.gather(points).data());
   set_work(state, gather.work(), s.faces.size());
 }
-BENCHMARK(BM_GatherPoints)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_GatherPoints)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}, {16}})
+    ->Args({1, 0, 256})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 
 // The gather through the links (gather/link_gather.h) at the same points as BM_GatherPoints
 // (args: fine solve, points per patch, classify each point, rays per partly visible source or, with
-// shared rays, per point, shared rays).
+// shared rays, per point, shared rays): its defaults (0, 512, 1) beside 64 points on each partly
+// visible source after a shaft test from the point (1, 64, 0). Compare with BM_GatherPoints/1 (the
+// all-patches gather in the same per-source mode) at the same points.
 void BM_LinkGatherPoints(benchmark::State& state) {
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
   const Solved& s = solved(state.range(0) != 0);
@@ -128,7 +135,9 @@ void BM_LinkGatherPoints(benchmark::State& state) {
   set_work(state, gather.work(), s.solution.faces.size());
 }
 BENCHMARK(BM_LinkGatherPoints)
-    ->ArgsProduct({{0, 1}, {16, 256}, {0, 1}, {16, 64, 256}, {0, 1}})
+    ->ArgsProduct({{0, 1}, {16, 256}, {0}, {512}, {1}})
+    ->ArgsProduct({{0}, {16, 256}, {1}, {64}, {0}})
+    ->ArgsProduct({{0}, {256}, {0}, {128, 256}, {1}})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 

@@ -76,10 +76,9 @@ struct LinkGatherOptions {
   /// `visibility_samples` rays per point over all of them, each source's share proportional to its
   /// unoccluded contribution (as LeafGatherOptions::partial).
   PartialVisibility partial = PartialVisibility::shared;
-  /// Stratified points per partly visible source, or rays per point (see `partial`). Shared, on the
-  /// Cornell box's default solve at the sweep's samples: relative L2 to the sweep's reference 0.93%
-  /// at 512 rays a point, 0.97% at 256, 1.08% at 128 (per source with 64 points each: 0.92%, at
-  /// ~3200 rays a point).
+  /// Stratified points per partly visible source, or rays per point (see `partial`). Shared, 512
+  /// keep the Cornell box's default solve as close to the sweep's reference as 64 points a source
+  /// (~3100 rays a point) do (README, "Gathering through the links").
   int visibility_samples = 512;
   /// A split source still partly visible from the point is opened and its children classified
   /// (as leaf_gather.h per node): k points over a large source resolve a shadow edge across it
