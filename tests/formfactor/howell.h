@@ -4,16 +4,22 @@
 // (__float128), because the formulas themselves cancel at extreme aspect ratios.
 #pragma once
 
-#include <quadmath.h>
-
 #include <vector>
 
 #include "hrad/core/types.h"
 
+// The libquadmath functions used, declared here: quadmath.h lives in GCC's own include folder,
+// which clang (the sanitizer tree's compiler) does not search. The library is the same.
+extern "C" {
+__float128 atanq(__float128) noexcept;
+__float128 logq(__float128) noexcept;
+__float128 sqrtq(__float128) noexcept;
+}
+
 namespace hrad::test {
 
 using Quad = __float128;
-inline const Quad kPiQ = M_PIq;
+inline const Quad kPiQ = 4 * atanq(Quad(1));
 
 /// C-11: parallel, directly opposed rectangles a x b at distance c.
 inline double howell_c11(double a, double b, double c) {
