@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Builds the unit test programs with AddressSanitizer + UndefinedBehaviorSanitizer (preset `sanitize`,
-# build-sanitize/) and runs them with CTest. Any sanitizer report fails the test that triggered it.
+# Builds the unit test programs with AddressSanitizer + UndefinedBehaviorSanitizer (preset `sanitize`: clang-14,
+# build-sanitize/, the tree that also holds the libFuzzer targets) and runs them with CTest. Any sanitizer report
+# fails the test that triggered it.
 # Usage: scripts/sanitize.sh [TEST_PROGRAM...]   (default: every unit test program)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/install_deps.sh
+scripts/install_deps.sh --with-fuzzing
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
   for d in tests/*/; do
