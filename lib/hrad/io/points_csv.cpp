@@ -18,10 +18,14 @@
 // here with std::from_chars, which rounds correctly (the parser's own float reader does not).
 // Its error types copy file names with strncpy, which GCC's inliner warns about in this file.
 #define CSV_IO_NO_THREAD
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wstringop-truncation"
+#endif
 #include <libfccp/csv.h>
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 
 namespace hrad {
 namespace {

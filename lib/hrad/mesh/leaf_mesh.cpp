@@ -1,6 +1,12 @@
 // detail::LeafMesh: the leaves as the faces of one OpenMesh half-edge mesh, cut in place by splits.
 #include "hrad/mesh/detail/leaf_mesh.h"
 
+// GCC 12 reports OpenMesh's property arrays (PropertyT::push_back of a default VectorT, which is
+// uninitialized by design) as maybe used uninitialized once inlined here; silenced for this file.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
 #include <cassert>
 
 #include <OpenMesh/Core/System/omstream.hh>

@@ -2,6 +2,12 @@
 // one to compile (Polygon_set_2 over an exact kernel): keep it alone.
 #include "hrad/visibility/visible_region.h"
 
+// GCC 12 reports CGAL's Epic_converter (its optional result) as maybe used uninitialized once
+// inlined here; a false positive in CGAL's headers, silenced for this file only.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
 #include <CGAL/Boolean_set_operations_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_2.h>
