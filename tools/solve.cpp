@@ -39,8 +39,8 @@
 //                          rooms, one term per leaf and link on its path)
 //   --basis constant|linear
 //                          the radiosity over each element: constant (default), or linear (bilinear
-//                          on quads), the L2 projection of E + rho H (every method; hierarchical
-//                          with --push hsa; lib/hrad/solvers/linear_basis.h, field_links.h)
+//                          on quads), the L2 projection of E + rho H (every method, either push;
+//                          lib/hrad/solvers/linear_basis.h, field_links.h, leaf_links.h)
 //   --balance              balance the leaves after meshing or refinement (a restricted quadtree: at
 //                          most one level between edge neighbours, so no long T-edges in the output)
 //   --threads N            worker threads (default: all cores)
@@ -107,8 +107,7 @@ void add_solve_command(CLI::App& app) {
                   "Hierarchical: auto | on | off (default auto: on from 200 patches)");
   cmd->add_option("--push", args->push,
                   "Hierarchical: hsa (default, O(links) gather) | leaf (links resolved to leaves)");
-  cmd->add_option("--basis", args->basis,
-                  "Radiosity per element: constant (default) | linear (hierarchical: --push hsa)");
+  cmd->add_option("--basis", args->basis, "Radiosity per element: constant (default) | linear (bilinear on quads)");
   cmd->add_flag("--balance", args->balance, "At most one level between edge neighbours (no long T-edges)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--report", args->report, "Write the solve report (JSON) here");

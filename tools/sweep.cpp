@@ -95,7 +95,7 @@ void add_sweep_command(CLI::App& app) {
                   "The smallest-element area of the feps runs, as a fraction of the total area (default automatic)");
   cmd->add_option("--push", args->push, "Hierarchical link operators to run, comma-separated: hsa, leaf (default hsa)");
   cmd->add_option("--basis", args->basis,
-                  "Bases to run for every method (hierarchical: with hsa), comma-separated: constant, linear (default "
+                  "Bases to run for every method and push, comma-separated: constant, linear (default "
                   "constant,linear)");
   cmd->add_option("--visibility-samples", args->visibility_samples,
                   "Point pairs per partly visible pair in every run (default: the solvers'); the reference uses 4x");

@@ -40,8 +40,8 @@ TEST(SweepGathered, FurnaceRunsGatherTheClosedFormEverywhere) {
     }
   const std::vector<SweepRow> rows = run_sweep(box, reference, o);
   // Full and substructuring at 2 element counts and one shooting-patch size, each with both bases;
-  // one feps and one aeps with the leaf push (constant only).
-  ASSERT_EQ(rows.size(), 12u);
+  // one feps and one aeps with the leaf push, each with both bases.
+  ASSERT_EQ(rows.size(), 14u);
   for (const SweepRow& r : rows) {
     const double bound = r.method == "full" ? 1e-9 : 1e-5;
     EXPECT_LT(r.error_l2_gathered, bound) << r.method << " " << r.parameter << " " << r.value;

@@ -89,7 +89,6 @@ std::vector<std::pair<Method, SweepSetting>> sweep_settings(const Scene& scene, 
   }
   for (const Push push : options.pushes)
     for (const Basis basis : options.bases) {
-      if (basis == Basis::kLinear && push != Push::kHsa) continue;  // the leaf operator gathers constants
       for (double feps : options.feps_values) {
         SolveOptions o = base_options(Method::kHierarchical, options);
         o.feps = feps;

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include "hrad/formfactor/simpson_rule.h"
+#include "hrad/solvers/linear_basis.h"
 #include "hrad/visibility/sampling.h"
 
 namespace hrad {
@@ -13,29 +14,8 @@ namespace {
 // the boundary itself a ray can graze a neighbouring patch that meets it there.
 constexpr double kRayStart = 1.0 / 16.0;
 
-struct SideFactors {
-  SimpsonPoints points;
-  std::array<double, 9> factor{};
-};
-
-// Unoccluded point factors of r's points to s: at the centre Lambert's formula, on the boundary its
-// limit from inside r (a point on an edge shared with s's plane).
-SideFactors side_factors(const FormFactorEvaluator& ev, const ElementNode& r, const ElementNode& s) {
-  SideFactors side;
-  side.points = simpson_points(r.polygon());
-  const Vec3& n = ev.scene().patches[static_cast<std::size_t>(r.patch)].normal;
-  const int centre = side.points.count - 1;
-  const Vec3& c = side.points.x[static_cast<std::size_t>(centre)];
-  for (int i = 0; i < side.points.count; ++i) {
-    const Vec3& x = side.points.x[static_cast<std::size_t>(i)];
-    side.factor[static_cast<std::size_t>(i)] =
-        i == centre ? ev.point_factor(x, n, s.polygon()) : ev.point_factor(x, n, Vec3(c - x), s.polygon());
-  }
-  return side;
-}
-
 void visible_fractions(const FormFactorEvaluator& ev, const ElementNode& r, const ElementNode& s,
-                       const std::vector<int>* occluders, int rays, std::uint64_t seed, SideFactors* side) {
+                       const std::vector<int>* occluders, int rays, std::uint64_t seed, PointFactors* side) {
   const Vec3& n = ev.scene().patches[static_cast<std::size_t>(r.patch)].normal;
   const int centre = side->points.count - 1;
   const Vec3& c = side->points.x[static_cast<std::size_t>(centre)];
@@ -52,17 +32,14 @@ void visible_fractions(const FormFactorEvaluator& ev, const ElementNode& r, cons
 }
 
 // The source's weights over its moments: its points' factors over their integral against its basis
-// (a quad's biquadratic functions integrate to the Simpson weights; a triangle's quadratic ones to
-// 0 at the vertices and a third of the area at the midpoints), so a uniform radiosity sends itself.
-// A source none of whose points sees the receiver sends its mean.
-std::array<double, 9> source_weights(const SideFactors& source, double area) {
-  const bool quad = source.points.count == 9;
-  const int functions = quad ? 9 : 6;
+// (basis_integrals()), so a uniform radiosity sends itself. A source none of whose points sees the
+// receiver sends its mean.
+std::array<double, 9> source_weights(const PointFactors& source, double area) {
+  const int functions = basis_functions(source.points);
+  const std::array<double, 9> basis = basis_integrals(source.points, area);
   double integral = 0.0;
-  for (int m = 0; m < functions; ++m) {
-    const double basis = quad ? source.points.weight[static_cast<std::size_t>(m)] : (m < 3 ? 0.0 : area / 3.0);
-    integral += basis * source.factor[static_cast<std::size_t>(m)];
-  }
+  for (int m = 0; m < functions; ++m)
+    integral += basis[static_cast<std::size_t>(m)] * source.factor[static_cast<std::size_t>(m)];
   std::array<double, 9> w{};
   for (int m = 0; m < functions; ++m)
     w[static_cast<std::size_t>(m)] =
@@ -72,12 +49,26 @@ std::array<double, 9> source_weights(const SideFactors& source, double area) {
 
 }  // namespace
 
+PointFactors point_factors(const FormFactorEvaluator& ev, const ElementNode& r, std::span<const Vec3> source) {
+  PointFactors side;
+  side.points = simpson_points(r.polygon());
+  const Vec3& n = ev.scene().patches[static_cast<std::size_t>(r.patch)].normal;
+  const int centre = side.points.count - 1;
+  const Vec3& c = side.points.x[static_cast<std::size_t>(centre)];
+  for (int i = 0; i < side.points.count; ++i) {
+    const Vec3& x = side.points.x[static_cast<std::size_t>(i)];
+    side.factor[static_cast<std::size_t>(i)] =
+        i == centre ? ev.point_factor(x, n, source) : ev.point_factor(x, n, Vec3(c - x), source);
+  }
+  return side;
+}
+
 void pair_fields(const FormFactorEvaluator& ev, const ElementNode& a, const ElementNode& b, int rays,
                  FieldEntry* a_from_b, FieldEntry* b_from_a) {
   *a_from_b = FieldEntry{};
   *b_from_a = FieldEntry{};
   if (a.patch == b.patch || ev.faces_away(a.polygon(), b.polygon())) return;
-  SideFactors sa = side_factors(ev, a, b), sb = side_factors(ev, b, a);
+  PointFactors sa = point_factors(ev, a, b.polygon()), sb = point_factors(ev, b, a.polygon());
   if (ev.effects().visibility) {
     std::vector<int> occluders;
     const PairClass cls = ev.classify(a.polygon(), a.patch, b.polygon(), b.patch, nullptr, &occluders);

@@ -16,14 +16,26 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "hrad/core/huge_page_allocator.h"
+#include "hrad/formfactor/simpson_rule.h"
 #include "hrad/mesh/element_hierarchy.h"
 #include "hrad/solvers/form_factor_evaluator.h"
 #include "hrad/solvers/link_operator.h"
 
 namespace hrad {
+
+/// The unoccluded factors F(dA_x -> source) at the receiver's simpson_points() (PointValues order;
+/// `count` of them): Lambert's formula at the centre, its one-sided limit from inside the receiver
+/// at the boundary points (a point on an edge shared with the source's plane).
+struct PointFactors {
+  SimpsonPoints points;
+  std::array<double, 9> factor{};
+};
+PointFactors point_factors(const FormFactorEvaluator& evaluator, const ElementNode& receiver,
+                           std::span<const Vec3> source);
 
 /// One direction of a pair: what `receiver` gathers from `source`.
 struct FieldEntry {

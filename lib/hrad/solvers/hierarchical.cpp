@@ -45,7 +45,7 @@ Operators make_operators(const SolveOptions& options, const ElementHierarchy& h,
   }
   std::vector<Link> elements, clusters;
   for (const Link& l : links) (is_cluster(l.p) || is_cluster(l.q) ? clusters : elements).push_back(l);
-  ops.leaf = std::make_unique<LeafLinks>(h, evaluator, elements);
+  ops.leaf = std::make_unique<LeafLinks>(h, evaluator, elements, options.basis == Basis::kLinear);
   ops.hsa = std::make_unique<HsaLinks>(clusters, h, tree, geometry);
   return ops;
 }
@@ -165,7 +165,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
       converged = iterate(ctx, push_pull, all, field, bound);
     }
     push_pull.store(field, h, &cluster_radiosity);
-    if (options.push == Push::kHsa) point_radiosity = std::move(field.point_radiosity);
+    if (options.push == Push::kHsa || options.basis == Basis::kLinear)
+      point_radiosity = std::move(field.point_radiosity);
     if (!converged) break;
     // BF refinement: the tolerance depends on B, so refine again with the new radiosity (HSA sec. 4.2).
     if (t.bfeps <= 0.0 || passes >= kMaxRefinePasses) break;

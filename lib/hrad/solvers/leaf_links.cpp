@@ -9,7 +9,11 @@
 
 #include "hrad/core/error.h"
 #include "hrad/formfactor/receiver_gauss_factor.h"
+#include "hrad/formfactor/simpson_rule.h"
 #include "hrad/geometry/polygon.h"
+#include "hrad/solvers/field_links.h"
+#include "hrad/solvers/linear_basis.h"
+#include "hrad/solvers/push_pull.h"
 
 namespace hrad {
 namespace {
@@ -21,10 +25,20 @@ double exchange_of(const ElementHierarchy& h, const Link& link) { return h.node(
 // (receiver_factor_by_distance()).
 constexpr double kLeafCentroidRatio = 0.03;
 
+// A field over node `top` (PointValues order) restricted to its descendant `n`, through the
+// children on the way down (push_pull.h restrict_to_child()).
+std::array<double, 9> shape_below(const ElementHierarchy& h, NodeId top, NodeId n, const std::array<double, 9>& field) {
+  if (n == top) return field;
+  const ElementNode& node = h.node(n);
+  return restrict_to_child(shape_below(h, top, node.parent, field), node.vertex_count,
+                           n - h.node(node.parent).first_child);
+}
+
 }  // namespace
 
-LeafLinks::LeafLinks(const ElementHierarchy& h, const FormFactorEvaluator& evaluator, std::span<const Link> pairs)
-    : nodes_(h.size()) {
+LeafLinks::LeafLinks(const ElementHierarchy& h, const FormFactorEvaluator& evaluator, std::span<const Link> pairs,
+                     bool fields)
+    : nodes_(h.size()), fields_(fields) {
   LeafLinks& out = *this;
   out.pairs_.reserve(pairs.size());
   std::vector<std::vector<NodeId>> leaves_of(h.size());  // memoised leaves_below of interior nodes
@@ -50,8 +64,60 @@ LeafLinks::LeafLinks(const ElementHierarchy& h, const FormFactorEvaluator& evalu
   // scaled factors wait in `weight` until grouped by leaf: 20 bytes per entry at the peak, not 32
   // (201 M entries at aeps = total/50000 on the Cornell box, where first touching memory is slow).
   out.leaf_.resize(total);
-  out.weight_.resize(total);
+  if (fields) {
+    out.points_.resize(total);
+    out.inverse_integral_.resize(2 * pairs.size());
+    out.functions_.resize(h.size());
+    for (std::size_t i = 0; i < h.size(); ++i)
+      out.functions_[i] = h.node(static_cast<NodeId>(i)).vertex_count == 4 ? 9 : 6;
+  } else {
+    out.weight_.resize(total);
+  }
   std::vector<std::uint8_t> uniform(2 * pairs.size(), 0);  // per side: HSA's uniform push and mean
+  // One side with fields: each leaf's exact point factors times the link's visible fraction (so a
+  // point's factors to sources that tile a closed room sum to 1), and the side sends its leaves'
+  // moments weighed by them over their integral against the basis (a uniform side sends its
+  // radiosity). Where none of them sees the other side, every point takes f_rs and the side sends
+  // its area-weighted mean. Returns 1 / that integral (0: the side sends nothing).
+  auto resolve_fields = [&](const Link& link, bool p_side, std::size_t first) {
+    const NodeId r = p_side ? link.p : link.q, s = p_side ? link.q : link.p;
+    const double f_rs = p_side ? link.f_pq : link.f_qp;
+    const bool leaf = h.node(r).is_leaf();
+    const std::span<const NodeId> l =
+        leaf ? std::span<const NodeId>(&r, 1) : std::span<const NodeId>(leaves_of[static_cast<std::size_t>(r)]);
+    const std::span<const Vec3> source = h.node(s).polygon();
+    std::array<double, 9> shape{};
+    if (link.partial && link.shaped)
+      for (std::size_t m = 0; m < 9; ++m) shape[m] = (p_side ? link.shape_p : link.shape_q)[m];
+    double integral = 0.0;
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      const ElementNode& n = h.node(l[k]);
+      const SimpsonPoints points = simpson_points(n.polygon());
+      std::array<double, 9> f{};
+      if (link.partial && link.shaped) {
+        f = shape_below(h, r, l[k], shape);
+      } else {
+        f = point_factors(evaluator, n, source).factor;
+        for (double& v : f) v *= link.fraction;
+      }
+      const std::array<double, 9> b = basis_integrals(points, n.area);
+      for (int m = 0; m < basis_functions(points); ++m)
+        integral += b[static_cast<std::size_t>(m)] * f[static_cast<std::size_t>(m)];
+      std::array<float, 9>& to = out.points_[first + k];
+      to.fill(0.0f);
+      for (int m = 0; m < points.count; ++m)
+        to[static_cast<std::size_t>(m)] = static_cast<float>(f[static_cast<std::size_t>(m)]);
+      out.leaf_[first + k] = l[k];
+    }
+    if (integral > 0.0) return 1.0 / integral;
+    const double exchange = h.node(r).area * f_rs;
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      std::array<float, 9>& to = out.points_[first + k];
+      const int count = h.node(l[k]).vertex_count == 4 ? 9 : 7;
+      for (int m = 0; m < count; ++m) to[static_cast<std::size_t>(m)] = static_cast<float>(f_rs);
+    }
+    return exchange > 0.0 ? 1.0 / exchange : 0.0;
+  };
   // One side: leaves below `r` against `s`, whose total exchange A_r F(r -> s) is `exchange`.
   // Writes the leaves' scaled factors to weight[first, ...).
   auto resolve = [&](NodeId r, NodeId s, double f_rs, double exchange, std::size_t first, std::uint8_t& flat) {
@@ -91,6 +157,11 @@ LeafLinks::LeafLinks(const ElementHierarchy& h, const FormFactorEvaluator& evalu
                         const Link& pair = pairs[i];
                         const Pair& e = out.pairs_[i];
                         const double exchange = exchange_of(h, pair);
+                        if (fields) {
+                          out.inverse_integral_[2 * i + 1] = resolve_fields(pair, true, e.p_first);
+                          out.inverse_integral_[2 * i] = resolve_fields(pair, false, e.q_first);
+                          continue;
+                        }
                         resolve(pair.p, pair.q, pair.f_pq, exchange, e.p_first, uniform[2 * i]);
                         resolve(pair.q, pair.p, pair.f_qp, exchange, e.q_first, uniform[2 * i + 1]);
                       }
@@ -99,7 +170,7 @@ LeafLinks::LeafLinks(const ElementHierarchy& h, const FormFactorEvaluator& evalu
   out.leaf_offsets_.assign(h.size() + 1, 0);
   for (const NodeId l : out.leaf_) ++out.leaf_offsets_[static_cast<std::size_t>(l) + 1];
   for (std::size_t i = 0; i < h.size(); ++i) out.leaf_offsets_[i + 1] += out.leaf_offsets_[i];
-  out.factor_.resize(total);
+  (fields ? out.entry_.resize(total) : out.factor_.resize(total));
   out.other_side_.resize(total);
   std::vector<std::uint64_t> cursor(out.leaf_offsets_.begin(), out.leaf_offsets_.end() - 1);
   for (std::size_t k = 0; k < out.pairs_.size(); ++k) {
@@ -108,11 +179,15 @@ LeafLinks::LeafLinks(const ElementHierarchy& h, const FormFactorEvaluator& evalu
       const auto [first, end] = e.side(side);
       for (std::size_t i = first; i < end; ++i) {
         const std::uint64_t to = cursor[static_cast<std::size_t>(out.leaf_[i])]++;
-        out.factor_[to] = out.weight_[i];
+        if (fields)
+          out.entry_[to] = i;
+        else
+          out.factor_[to] = out.weight_[i];
         out.other_side_[to] = static_cast<std::uint32_t>(2 * k + side);  // p entries gather q's mean
       }
     }
   }
+  if (fields) return;
   // The weights: each leaf's share A_leaf f / (A_p F(p -> q)) of its side's exchange, or its area
   // share where the side is uniform.
   tbb::parallel_for(
@@ -136,10 +211,56 @@ LeafLinks::LeafLinks(const ElementHierarchy& h, const FormFactorEvaluator& evalu
 std::uint64_t LeafLinks::bytes() const {
   return pairs_.capacity() * sizeof(Pair) + leaf_.capacity() * sizeof(NodeId) + weight_.capacity() * sizeof(double) +
          leaf_offsets_.capacity() * sizeof(std::uint64_t) + factor_.capacity() * sizeof(double) +
-         other_side_.capacity() * sizeof(std::uint32_t);
+         other_side_.capacity() * sizeof(std::uint32_t) + points_.capacity() * sizeof(points_[0]) +
+         entry_.capacity() * sizeof(std::uint64_t) + inverse_integral_.capacity() * sizeof(double) +
+         functions_.capacity();
+}
+
+void LeafLinks::gather_fields(NodeField& field) const {
+  // What each side sends: its leaves' point factors against their moments, over their integral.
+  auto sent = [&](std::size_t first, std::size_t n, double inverse_integral) {
+    std::array<double, 3> b{};
+    for (std::size_t k = first; k < first + n; ++k) {
+      const std::size_t leaf = static_cast<std::size_t>(leaf_[k]);
+      const PointValues& m = field.radiosity_moments[leaf];
+      for (int j = 0; j < functions_[leaf]; ++j) {
+        const double f = points_[k][static_cast<std::size_t>(j)];
+        for (int c = 0; c < 3; ++c) b[static_cast<std::size_t>(c)] += f * m[static_cast<std::size_t>(j)][c];
+      }
+    }
+    return Rgb(b[0] * inverse_integral, b[1] * inverse_integral, b[2] * inverse_integral);
+  };
+  std::vector<Rgb> means(2 * pairs_.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs_.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        const Pair& e = pairs_[k];
+                        means[2 * k] = sent(e.q_first, e.q_count, inverse_integral_[2 * k]);
+                        means[2 * k + 1] = sent(e.p_first, e.p_count, inverse_integral_[2 * k + 1]);
+                      }
+                    });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nodes_, 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t n = range.begin(); n != range.end(); ++n) {
+                        if (leaf_offsets_[n] == leaf_offsets_[n + 1]) continue;
+                        PointValues sum;
+                        sum.fill(Rgb::Zero());
+                        for (std::uint64_t j = leaf_offsets_[n]; j < leaf_offsets_[n + 1]; ++j) {
+                          const std::array<float, 9>& f = points_[entry_[j]];
+                          const Rgb& b = means[other_side_[j]];
+                          for (std::size_t k = 0; k < 9; ++k) sum[k] += static_cast<double>(f[k]) * b;
+                        }
+                        PointValues& h = field.irradiance[n];
+                        for (std::size_t k = 0; k < 9; ++k) h[k] += sum[k];
+                      }
+                    });
 }
 
 void LeafLinks::gather(NodeField& field) const {
+  if (fields_) {
+    gather_fields(field);
+    return;
+  }
   auto mean = [&](std::size_t first, std::size_t n) {
     Rgb b = Rgb::Zero();
     for (std::size_t k = first; k < first + n; ++k)

@@ -24,8 +24,19 @@
 // refinement in parallel, and two passes over them per iteration. A leaf far from the other side against its size takes
 // its factor at its centroid (receiver_factor_by_distance()); the gather reads the factors grouped by leaf, in sequence
 // (hierarchical_benchmark measures it).
+//
+// With linear elements (`fields`) each entry keeps its leaf's factors at the leaf's simpson_points()
+// (field_links.h point_factors(): Lambert's exact point factor at each) times the link's visible
+// fraction, unscaled: a leaf gathers a field, which the push projects onto its linear space
+// (linear_basis.h), and a side sends its leaves' radiosity moments weighed by their point factors
+// over those factors' integral (field_links.h's source weights, summed over the side). As for the
+// full matrix, each leaf point sums the exact factors of sources that tile a closed room, so a
+// uniform room is reproduced at every point; reciprocity holds to the points' quadrature. The HSA
+// push instead interpolates a coarse link's field down to the leaves, which misses fields that
+// vary like a logarithm (beside a room's edges corners stray by a few percent).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -47,15 +58,18 @@ namespace hrad {
 /// in increasing entry order. 24 bytes per entry plus 8 per node.
 class LeafLinks final : public LinkOperator {
  public:
-  /// Resolves `links` (between elements only) to leaves as described above. Deterministic order.
-  LeafLinks(const ElementHierarchy& hierarchy, const FormFactorEvaluator& evaluator, std::span<const Link> links);
+  /// Resolves `links` (between elements only) to leaves as described above, with point fields
+  /// for linear elements when `fields`. Deterministic order.
+  LeafLinks(const ElementHierarchy& hierarchy, const FormFactorEvaluator& evaluator, std::span<const Link> links,
+            bool fields = false);
 
   /// For every pair adds to each leaf L of one side f(L -> other) times the weighted mean radiosity
   /// of the other side's leaves (all channels). Parallel (the sides' means over pairs, then each
   /// leaf's sum over its entries in entry order): the same bits at any thread count.
   void gather(NodeField& field) const override;
-  /// Two per entry: its share of its side's mean, and its factor times the other side's mean.
-  std::uint64_t terms() const override { return 2 * leaf_.size(); }
+  /// Two per entry: its share of its side's mean, and its factor times the other side's mean; with
+  /// fields, one per moment the leaf sends and one per point it gathers at.
+  std::uint64_t terms() const override { return (fields_ ? 18 : 2) * leaf_.size(); }
   std::uint64_t bytes() const override;
   std::size_t size() const { return leaf_.size(); }
 
@@ -67,7 +81,10 @@ class LeafLinks final : public LinkOperator {
       return s == 0 ? std::pair{p_first, p_first + p_count} : std::pair{q_first, q_first + q_count};
     }
   };
+  void gather_fields(NodeField& field) const;
+
   std::size_t nodes_ = 0;
+  bool fields_ = false;
   std::vector<Pair> pairs_;
   BigVector<NodeId> leaf_;    ///< the leaf of each entry
   BigVector<double> weight_;  ///< A_leaf f / (A_p F(p -> q)): the leaf's share of its side's exchange
@@ -76,6 +93,13 @@ class LeafLinks final : public LinkOperator {
   /// it gathers (2 k for pair k's q side, 2 k + 1 for its p side).
   BigVector<double> factor_;
   BigVector<std::uint32_t> other_side_;
+  /// With fields, by entry: the point factors (floats: 6e-8 relative), which also weigh the leaf's
+  /// moments when its side sends; by leaf, like factor_: the entry. Per side (2 k: pair k's q side,
+  /// 2 k + 1: its p side): 1 / the side's point factors' integral against its leaves' bases.
+  BigVector<std::array<float, 9>> points_;
+  BigVector<std::uint64_t> entry_;
+  std::vector<double> inverse_integral_;
+  std::vector<std::uint8_t> functions_;  ///< per node: its basis functions (9 quad, 6 triangle)
 };
 
 }  // namespace hrad

@@ -79,4 +79,11 @@ PointValues point_field_moments(const std::array<double, 9>& weight, int count, 
   return m;
 }
 
+std::array<double, 9> basis_integrals(const SimpsonPoints& points, double area) {
+  std::array<double, 9> b{};
+  if (points.count == 9) return points.weight;
+  for (int m = 3; m < 6; ++m) b[static_cast<std::size_t>(m)] = area / 3.0;
+  return b;
+}
+
 }  // namespace hrad

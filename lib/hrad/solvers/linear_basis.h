@@ -35,6 +35,14 @@
 
 namespace hrad {
 
+/// The integrals over an element of the basis functions of PointValues fields, against which
+/// NodeField::radiosity_moments are taken: a quad's biquadratic functions integrate to its Simpson
+/// weights, a triangle's quadratic ones to 0 at the vertices and a third of the area at the
+/// midpoints (6 functions).
+std::array<double, 9> basis_integrals(const SimpsonPoints& points, double area);
+/// The number of basis functions of PointValues fields (9 on a quad, 6 on a triangle).
+inline int basis_functions(const SimpsonPoints& points) { return points.count == 9 ? 9 : 6; }
+
 /// Corners of an element with `vertex_count` vertices (3 or 4): the linear basis's functions.
 inline int linear_corners(int vertex_count) { return vertex_count == 4 ? 4 : 3; }
 

@@ -77,6 +77,18 @@ const Restriction& restriction(int vertex_count) {
 
 }  // namespace
 
+std::array<double, 9> restrict_to_child(const std::array<double, 9>& parent, int vertex_count, int child) {
+  const Restriction& r = restriction(vertex_count);
+  const int inputs = vertex_count == 4 ? 9 : 6, outputs = vertex_count == 4 ? 9 : 7;
+  std::array<double, 9> out{};
+  for (int j = 0; j < outputs; ++j)
+    for (int m = 0; m < inputs; ++m)
+      out[static_cast<std::size_t>(j)] +=
+          r[static_cast<std::size_t>(child)][static_cast<std::size_t>(j)][static_cast<std::size_t>(m)] *
+          parent[static_cast<std::size_t>(m)];
+  return out;
+}
+
 PushPull::PushPull(const Scene& scene, const ElementHierarchy& hierarchy, const ClusterTree* tree, int channels,
                    Basis basis)
     : scene_(scene),
@@ -99,13 +111,7 @@ PushPull::PushPull(const Scene& scene, const ElementHierarchy& hierarchy, const 
                         std::array<double, 9>& w = mean_weights_[i];
                         w.fill(0.0);
                         for (int k = 0; k < s.count; ++k) w[k] = total > 0.0 ? s.weight[k] / total : 0.0;
-                        std::array<double, 9>& b = basis_integrals_[i];
-                        b.fill(0.0);
-                        if (s.count == 9) {
-                          for (int k = 0; k < 9; ++k) b[k] = s.weight[k];
-                        } else {
-                          for (int k = 3; k < 6; ++k) b[k] = total / 3.0;
-                        }
+                        basis_integrals_[i] = basis_integrals(s, total);
                         if (basis_ == Basis::kLinear && h_.node(static_cast<NodeId>(i)).is_leaf()) {
                           point_weights_[i] = s.weight;
                           projections_[i] = linear_projection(s);

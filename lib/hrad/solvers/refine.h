@@ -24,6 +24,7 @@ struct Link {
   double f_pq = 0.0;
   double f_qp = 0.0;
   bool partial = false;
+  double fraction = 1.0;                                                        ///< Candidate::fraction
   std::shared_ptr<const ShadedPatches> hidden_p = nullptr, hidden_q = nullptr;  ///< Candidate::hidden_p, hidden_q
   float shadow_p = 0.0f, shadow_q = 0.0f;                                       ///< Candidate::shadow_p, shadow_q
   float share_p = 0.0f, share_q = 0.0f;                                         ///< Candidate::share_p, share_q

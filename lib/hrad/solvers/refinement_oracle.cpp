@@ -443,6 +443,7 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   }
   c.f_pq = linked * fraction / p.area;
   c.f_qp = linked * fraction / q.area;
+  c.fraction = fraction;
   if (!(c.f_pq > 0.0) && !(c.f_qp > 0.0)) {
     c.decision = Decision::kDrop;
     return;

@@ -46,6 +46,8 @@ struct Candidate {
   double f_pq = 0.0;
   double f_qp = 0.0;
   bool partial = false;  ///< linked with a sampled visible fraction (the shaft test found occluders; a cluster link)
+  /// Between elements: the linked visible fraction (f_pq = unoccluded F(p -> q) times it; 1 unless partial).
+  double fraction = 1.0;
   /// A link with a cluster end: the patches of a cluster p (q) that face the other end but see only
   /// part of it or nothing (FormFactorEvaluator::shaded_surfaces(); null when none). Each gets and
   /// shows through the link in proportion to its projected area times the fraction it sees

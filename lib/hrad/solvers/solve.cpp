@@ -68,8 +68,6 @@ void validate_options(const SolveOptions& o) {
         fmt::format("--basis linear with --method full iterates the corner values by Jacobi (--linear-solver "
                     "jacobi), not {}",
                     to_string(o.linear_solver)));
-  if (o.basis == Basis::kLinear && o.method == Method::kHierarchical && o.push != Push::kHsa)
-    throw Error("--basis linear needs --push hsa (the leaf operator gathers one value per leaf)");
   if (o.threads < 0) throw Error(fmt::format("--threads must be >= 0 (0 = all cores), got {}", o.threads));
 }
 
