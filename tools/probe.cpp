@@ -3,12 +3,13 @@
 //
 // Light at points from a solution written by `hrad solve`, by final gather (lib/hrad/gather/probes.h):
 // the irradiance H(x) = sum_j F(x -> j) V(x, j) B_j a sensor at x facing n receives from the
-// solution's leaves j, with Lambert's exact point-to-polygon factor and visibility decided from the
-// point itself, in the scene's exitance units (lux when the emission is luminous exitance in
-// lm/m^2). A point on a patch's front (within 1e-6 of the scene's size, its normal within ~1.4 mrad
-// of the patch's) also gets that patch's radiosity B = E + rho H; the points need not lie on a
-// surface. The same points answered by `hrad reference` (Monte Carlo, independent) give the same
-// columns, with standard errors.
+// solution's sources j, with Lambert's exact point-to-polygon factor and visibility decided from the
+// point itself (the sources of the links on the point's leaf's path when the solution stores a
+// hierarchical solve's links, lib/hrad/gather/link_gather.h; else, and for points in space, every
+// patch's leaves, lib/hrad/gather/leaf_gather.h), in the scene's exitance units (lux when the emission is luminous
+// exitance in lm/m^2). A point on a patch's front (within 1e-6 of the scene's size, its normal within ~1.4 mrad of the
+// patch's) also gets that patch's radiosity B = E + rho H; the points need not lie on a surface. The same points
+// answered by `hrad reference` (Monte Carlo, independent) give the same columns, with standard errors.
 //
 //   --scene SCENE          the scene the solution was solved on (required)
 //   --points P.csv         probe points, one a row under the header x,y,z,nx,ny,nz (position and the
@@ -27,7 +28,11 @@
 //                          (default 1e-3; 0 gathers every leaf on its own; see leaf_gather.h)
 //   --visibility-samples K points per partly visible leaf, kernel-weighted (default 64)
 //   --exact-visibility     the exact visible region of each partly visible leaf instead of samples
-//                          (CGAL; milliseconds a leaf: the reference for the sampled estimate)
+//                          (CGAL; milliseconds a leaf: the reference for the sampled estimate); over
+//                          all patches
+//   --gather-sources S     links (the solution's stored links; an error when it has none) or all
+//                          (every patch); default: links when the solution has them (and no
+//                          --exact-visibility), else all
 //   --threads N            worker threads (default: all cores); the values do not depend on it
 //   --seed S               seed of the visibility samples (default 1)
 //   --emission-units U     declare the unit of the scene's emission (MTL Ke): lm/m2 (luminous
@@ -61,6 +66,7 @@
 #include "hrad/gather/leaf_gather.h"
 #include "hrad/gather/photometry.h"
 #include "hrad/gather/probes.h"
+#include "hrad/gather/solution_gather.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/png_writer.h"
 #include "hrad/io/points_csv.h"
@@ -113,7 +119,7 @@ std::string rgb_cells(const Rgb& c) { return fmt::format("{},{},{}", c[0], c[1],
 void add_probe_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("probe", "Irradiance (and radiosity on surfaces) at points by final gather");
   struct Args {
-    std::string solution, scene, points, grid, out, emission_units, isolux;
+    std::string solution, scene, points, grid, out, emission_units, isolux, gather_sources;
     double gather_tolerance = 1e-3;
     int visibility_samples = 64, threads = 0;
     bool exact_visibility = false, quiet = false;
@@ -128,7 +134,10 @@ void add_probe_command(CLI::App& app) {
   cmd->add_option("--gather-tolerance", args->gather_tolerance,
                   "Barnes-Hut tolerance of the gather, relative to the mean radiosity (default 1e-3)");
   cmd->add_option("--visibility-samples", args->visibility_samples, "Points per partly visible leaf (default 64)");
-  cmd->add_flag("--exact-visibility", args->exact_visibility, "Exact visible regions instead of samples");
+  cmd->add_flag("--exact-visibility", args->exact_visibility,
+                "Exact visible regions instead of samples (over all patches)");
+  cmd->add_option("--gather-sources", args->gather_sources,
+                  "links | all: gather through the solution's links or over every patch (default: links if stored)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--seed", args->seed, "Seed of the visibility samples (default 1)");
   cmd->add_option("--emission-units", args->emission_units,
@@ -147,6 +156,10 @@ void add_probe_command(CLI::App& app) {
     options.visibility = args->exact_visibility ? VisibilityMode::exact : VisibilityMode::sampled;
     options.seed = args->seed;
     validate_leaf_gather_options(options);
+    const GatherSources sources =
+        args->gather_sources.empty() ? GatherSources::automatic : parse_gather_sources(args->gather_sources);
+    if (args->exact_visibility && sources == GatherSources::links)
+      throw Error("--gather-sources links: not with --exact-visibility");
     std::optional<ProbeGrid> grid;
     if (!args->grid.empty()) grid = parse_grid(args->grid);
     std::optional<EmissionUnits> units;
@@ -170,7 +183,8 @@ void add_probe_command(CLI::App& app) {
       for (const std::string& f : scene.files) inputs.emplace_back("an input of --scene", f);
       outputs.check_inputs(inputs);
     }
-    const Solution solution = read_solution_ply(args->solution);
+    std::optional<SolutionLinks> stored;
+    const Solution solution = read_solution_ply(args->solution, &stored);
     check_solution_patches(solution, args->solution, scene, args->scene);
     for (const std::string& w : warnings) std::cerr << w << "\n";
 
@@ -178,7 +192,8 @@ void add_probe_command(CLI::App& app) {
     if (args->threads > 0)
       limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, args->threads);
     const Stopwatch clock;
-    const LeafGather gather(scene, solution, options);
+    const SolutionGather gathering(scene, solution, stored, args->solution, sources, options);
+    const FinalGather& gather = gathering.gather();
     ProgressSink sink;
     if (!args->quiet) sink = [](std::string_view line) { std::cerr << "hrad probe: " << line << "\n"; };
     ProgressReporter progress("final gather", points.size(), "points", sink);
@@ -218,10 +233,10 @@ void add_probe_command(CLI::App& app) {
     const GatherWork w = gather.work();
     const double per_point = w.points ? 1.0 / static_cast<double>(w.points) : 0.0;
     std::cout << fmt::format(
-        "{}: {} points in {:.3f} s; per point: {:.1f} point factors, {:.1f} leaves covered, {:.1f} visibility "
-        "classifications, {:.1f} rays, {:.2f} exact regions\n",
-        args->out, points.size(), seconds, per_point * w.node_visits, per_point * w.leaves_covered,
-        per_point * w.classifications, per_point * w.rays, per_point * w.exact_regions);
+        "{}: {} points in {:.3f} s, gathered {}; per point: {:.1f} point factors, {:.1f} leaves covered, {:.1f} "
+        "visibility classifications, {:.1f} rays, {:.2f} exact regions\n",
+        args->out, points.size(), seconds, gathering.description(), per_point * w.node_visits,
+        per_point * w.leaves_covered, per_point * w.classifications, per_point * w.rays, per_point * w.exact_regions);
     if (grid && !lux.empty()) {
       double lo = lux[0], hi = lux[0], sum = 0.0;
       for (double v : lux) lo = std::min(lo, v), hi = std::max(hi, v), sum += v;

@@ -5,10 +5,12 @@
 // hrad's software rasterizer. Files are written atomically. By default each element's
 // vertex-interpolated radiosity is drawn (Gouraud). With --final-gather every pixel's samples
 // gather the radiosity where they meet the scene, B(x) = E + rho sum_j F(x -> j) V(x, j) B_j over
-// the solution's leaves j (lib/hrad/gather/leaf_gather.h: exact point-to-polygon factors, the
-// leaves of a distant patch grouped within --gather-tolerance, partly visible leaves sampled by
-// rays shared over the point), so the picture no longer shows the elements: shadows are resolved
-// at the pixels. The time of the image and the work of the gather are printed; progress with
+// sources j with exact point-to-polygon factors: through the links a hierarchical solve stores in
+// its file (lib/hrad/gather/link_gather.h: the sources of the links on the leaf's path, each
+// classified from the leaf), else over the solution's leaves (lib/hrad/gather/leaf_gather.h: the
+// leaves of a distant patch grouped within --gather-tolerance); partly visible sources sampled by
+// rays shared over the point. The picture no longer shows the elements: shadows are resolved at
+// the pixels. The time of the image and the work of the gather are printed; progress with
 // the time left goes to stderr.
 //
 //   --out IMAGE.png        output image (required); a name ending in .exr writes an OpenEXR file
@@ -21,6 +23,8 @@
 //                          (default 1e-2; 0 gathers every leaf on its own; larger is faster on
 //                          fine solutions: the leaves of distant patches are grouped)
 //   --visibility-samples K rays per gathered point shared by its partly visible leaves (default 32)
+//   --gather-sources S     links (the solution's stored links; an error when it has none) or all
+//                          (every patch); default: links when the solution has them, else all
 //   --threads N            worker threads of the gather (default: all cores); the image is the
 //                          same at any count
 //   --seed S               seed of the pixels' jitter and the gather's rays (default 1)
@@ -64,6 +68,7 @@
 #include "hrad/core/tone_map.h"
 #include "hrad/gather/gathered_image.h"
 #include "hrad/gather/leaf_gather.h"
+#include "hrad/gather/solution_gather.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/exr_writer.h"
 #include "hrad/io/png_writer.h"
@@ -121,7 +126,7 @@ void add_render_command(CLI::App& app) {
     int width = 512, height = 512;
     double exposure = 0.0;
     bool wireframe = false, both_sides = false;
-    std::string reference, scene, error_range, exr;
+    std::string reference, scene, error_range, exr, gather_sources;
     bool log_scale = false, include_emitters = false, final_gather = false, quiet = false;
     int samples_per_pixel = 4, visibility_samples = 32, threads = 0;
     double gather_tolerance = 1e-2;
@@ -138,6 +143,8 @@ void add_render_command(CLI::App& app) {
                   "Barnes-Hut tolerance of the gather, relative to the mean radiosity (default 1e-2)");
   cmd->add_option("--visibility-samples", args->visibility_samples,
                   "Rays per gathered point for its partly visible leaves (default 32)");
+  cmd->add_option("--gather-sources", args->gather_sources,
+                  "links | all: gather through the solution's links or over every patch (default: links if stored)");
   cmd->add_option("--threads", args->threads, "Worker threads of the gather (default: all cores)");
   cmd->add_option("--seed", args->seed, "Seed of the jitter and the gather's rays (default 1)");
   cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
@@ -182,6 +189,8 @@ void add_render_command(CLI::App& app) {
     gather_options.classify_points = false;
     gather_options.seed = args->seed;
     validate_leaf_gather_options(gather_options);
+    const GatherSources sources =
+        args->gather_sources.empty() ? GatherSources::automatic : parse_gather_sources(args->gather_sources);
     // Every option is checked before any file is read.
     const bool error_image = !args->reference.empty();
     if (error_image && args->final_gather) throw Error("--final-gather: not with --reference (an error image)");
@@ -193,7 +202,7 @@ void add_render_command(CLI::App& app) {
     if (!error_image && (!args->error_range.empty() || args->log_scale || args->include_emitters))
       throw Error("--reference: --error-range, --log and --include-emitters only apply to an error image");
     if (!args->final_gather)
-      for (const char* option : {"--gather-tolerance", "--visibility-samples", "--threads"})
+      for (const char* option : {"--gather-tolerance", "--visibility-samples", "--gather-sources", "--threads"})
         if (cmd->count(option)) throw Error(fmt::format("{}: only with --final-gather", option));
     if (!args->exr.empty() && (error_image || args->wireframe))
       throw Error("--exr: the linear values of a Gouraud or gathered image only (not an error image or a wireframe)");
@@ -211,7 +220,8 @@ void add_render_command(CLI::App& app) {
     if (!args->exr.empty()) outputs.declare("--exr", args->exr);
     outputs.check_inputs(
         {{"the solution", args->solution}, {"--reference", args->reference}, {"--scene", args->scene}});
-    const Solution solution = read_solution_ply(args->solution);
+    std::optional<SolutionLinks> stored;
+    const Solution solution = read_solution_ply(args->solution, args->final_gather ? &stored : nullptr);
     RenderOptions options;
     options.camera = camera ? *camera : default_camera(solution, args->width, args->height);
     options.exposure = cmd->count("--exposure") ? args->exposure : auto_exposure(solution);
@@ -236,18 +246,19 @@ void add_render_command(CLI::App& app) {
       std::unique_ptr<tbb::global_control> limit;
       if (args->threads > 0)
         limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, args->threads);
-      const LeafGather gather(*scene, solution, gather_options);
-      GatheredImage gathered = render_gathered(solution, gather, options);
+      const SolutionGather gather(*scene, solution, stored, args->solution, sources, gather_options);
+      GatheredImage gathered = render_gathered(solution, gather.gather(), options);
       image = std::move(gathered.display);
       linear = std::move(gathered.radiosity);
       const GatherWork& w = gathered.work;
       const double per_point = w.points ? 1.0 / static_cast<double>(w.points) : 0.0;
       std::cout << fmt::format(
-          "final gather: {}x{} pixels, {} samples per pixel, {} points in {:.2f} s ({:.2f} s gathering, {:.3g} "
-          "points/s); per point: {:.1f} point factors, {:.1f} leaves covered, {:.1f} rays\n",
+          "final gather: {}x{} pixels, {} samples per pixel, {} points in {:.2f} s ({:.2f} s gathering {}, {:.3g} "
+          "points/s); per point: {:.1f} point factors, {:.1f} leaves covered, {:.1f} shaft tests, {:.1f} rays\n",
           image.width, image.height, args->samples_per_pixel, gathered.points, gathered.seconds,
-          gathered.gather_seconds, gathered.gather_seconds > 0.0 ? gathered.points / gathered.gather_seconds : 0.0,
-          per_point * w.node_visits, per_point * w.leaves_covered, per_point * w.rays);
+          gathered.gather_seconds, gather.description(),
+          gathered.gather_seconds > 0.0 ? gathered.points / gathered.gather_seconds : 0.0, per_point * w.node_visits,
+          per_point * w.leaves_covered, per_point * w.classifications, per_point * w.rays);
     } else if (error_image) {
       const Solution reference = read_solution_ply(args->reference);
       check_solution_patches(reference, args->reference, *scene, args->scene);

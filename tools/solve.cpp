@@ -49,7 +49,9 @@
 // backs, escaped (the last ones sampled with rays of the reference's own), and the residual; a
 // residual above kPowerBalanceTolerance of the emitted power (plus 4 standard errors of the sampled
 // terms) is a warning on stderr and in the report.
-//   --out S.ply            the leaf mesh with tone-mapped vertex colours and per-face radiosity
+//   --out S.ply            the leaf mesh with tone-mapped vertex colours and per-face radiosity; a
+//                          hierarchical solve's file also carries its element hierarchy and links, which
+//                          hrad render --final-gather and hrad probe gather through (io/solution_ply.h)
 //   --exposure X           vertex-colour exposure for --out (default: automatic, emitters excluded)
 //   --quiet                no progress on stderr
 // Options out of range (zero, negative or NaN tolerances and areas, unknown names) are an error
@@ -65,11 +67,13 @@
 #include "hrad/core/error.h"
 #include "hrad/core/scene_checks.h"
 #include "hrad/core/tone_map.h"
+#include "hrad/gather/stored_links.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/scene_reader.h"
 #include "hrad/io/solution_ply.h"
 #include "hrad/report/report_json.h"
 #include "hrad/solvers/solve.h"
+#include "hrad/solvers/solved_hierarchy.h"
 
 namespace hrad::cli {
 
@@ -165,7 +169,10 @@ void add_solve_command(CLI::App& app) {
     for (const std::string& f : scene.files) inputs.emplace_back("an input of the scene", f);
     outputs.check_inputs(inputs);
     Solution solution;
-    const SolveSummary summary = solve(scene, o, &solution);
+    // A hierarchical solve's links go into --out, for a final gather through them.
+    SolvedHierarchy kept;
+    const bool keep = !args->out.empty() && o.method == Method::kHierarchical;
+    const SolveSummary summary = solve(scene, o, &solution, keep ? &kept : nullptr);
     // Where the power went, checked with rays of the reference's own (reference/power_balance.h). The
     // check needs an Embree device, which a tight address-space limit (ulimit -v) can refuse after the
     // solve succeeded: then the solution is still written, with a warning instead of the power line.
@@ -211,7 +218,9 @@ void add_solve_command(CLI::App& app) {
           emitter[p] = scene.material_of(scene.patches[p]).is_emitter();
         exposure = auto_exposure(solution, emitter);
       }
-      write_solution_ply(args->out, solution, exposure);
+      std::optional<SolutionLinks> links;
+      if (kept.hierarchy) links = stored_links(kept);
+      write_solution_ply(args->out, solution, exposure, links ? &*links : nullptr);
     }
     outputs.commit();
     std::cout << fmt::format("{}: {} on {} patches: {} elements, {} links, {} form factors, {} visibility queries\n",

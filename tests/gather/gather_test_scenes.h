@@ -8,6 +8,8 @@
 #include "../solvers/solver_test_scenes.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/mesh/element_hierarchy.h"
+#include "hrad/solvers/solve.h"
+#include "hrad/solvers/solved_hierarchy.h"
 
 namespace hrad::test {
 
@@ -39,6 +41,30 @@ inline Scene square_emitter_over_floor(double a, double c, double e) {
   add_polygon(s, {{-3, 0, -3}, {5, 0, -3}, {5, 0, 5}, {-3, 0, 5}}, Vec3::UnitY(), 0);
   add_polygon(s, {{0, c, 0}, {a, c, 0}, {a, c, a}, {0, c, a}}, -Vec3::UnitY(), 1);
   return s;
+}
+
+/// A hierarchical solve of `scene` with its hierarchy and links kept.
+inline SolvedHierarchy solve_keeping(const Scene& scene, SolveOptions o, Solution* out) {
+  SolvedHierarchy kept;
+  o.method = Method::kHierarchical;
+  solve(scene, o, out, &kept);
+  return kept;
+}
+
+/// square_emitter_over_floor(a, c, e) solved hierarchically (feps 0.001), its links kept.
+struct SolvedSquareEmitter {
+  double a = 2.0, c = 0.75, e = 3.0;
+  Scene scene;
+  Solution solution;
+  SolvedHierarchy kept;
+};
+inline SolvedSquareEmitter solved_square_emitter() {
+  SolvedSquareEmitter out;
+  out.scene = square_emitter_over_floor(out.a, out.c, out.e);
+  SolveOptions o;
+  o.feps = 0.001;
+  out.kept = solve_keeping(out.scene, o, &out.solution);
+  return out;
 }
 
 /// A uniform field: every leaf at `b`.

@@ -23,12 +23,7 @@ namespace {
 using test::make_box;
 using test::material;
 
-SolvedHierarchy solve_keeping(const Scene& scene, SolveOptions o, Solution* out) {
-  SolvedHierarchy kept;
-  o.method = Method::kHierarchical;
-  solve(scene, o, out, &kept);
-  return kept;
-}
+using test::solve_keeping;
 
 // Gathers the points one at a time and checks that each evaluated at most one point factor per link
 // on its leaf's path (per patch of a cluster source) when sources are gathered whole.
@@ -94,12 +89,11 @@ TEST(LinkGather, ClosedRoomGathersTheClosedFormAsTheAllPatchesGather) {
 // each of its nodes shows B = E, and a point on the floor gathers E times Howell's factor (B-3 summed
 // over the four rectangles meeting at the point's foot), however the links split the emitter.
 TEST(LinkGather, PointUnderASquareEmitterGathersHowellsFactor) {
-  const double a = 2.0, c = 0.75, e = 3.0;
-  const Scene s = test::square_emitter_over_floor(a, c, e);
-  SolveOptions o;
-  o.feps = 0.001;
-  Solution solution;
-  const SolvedHierarchy kept = solve_keeping(s, o, &solution);
+  const test::SolvedSquareEmitter solved = test::solved_square_emitter();
+  const double a = solved.a, c = solved.c, e = solved.e;
+  const Scene& s = solved.scene;
+  const Solution& solution = solved.solution;
+  const SolvedHierarchy& kept = solved.kept;
   const LinkGather gather(s, kept);
   std::vector<GatherPoint> points;
   std::vector<double> factors;
@@ -220,6 +214,45 @@ TEST(LinkGather, PointsOfALeafShareItsClassificationsNotTheirValues) {
   EXPECT_GT(together.work().rays, 0u);      // some source is partly visible
   EXPECT_EQ(together.work().rays, alone.work().rays);
   EXPECT_LT(together.work().classifications, alone.work().classifications);
+}
+
+// With each point classifying its partly visible sources (classify_points) and sampling each on its
+// own (per_node), a point's value does not depend on whether its leaf classified a source first
+// (the leaf's shaft holds the point's; where the leaf is decisive the point's samples all agree), so
+// the values are the same when every leaf classifies first, when none does, and when each point is
+// gathered alone; only the shaft tests differ. Points on the Cornell box's floor and the blocks'
+// tops, where sources are partly visible.
+TEST(LinkGather, ClassifyingFromTheLeafFirstOrNotGivesTheSameValues) {
+  Solution solution;
+  const SolvedHierarchy kept = solve_keeping(cornell(), SolveOptions{}, &solution);
+  std::vector<GatherPoint> points;
+  for (const SurfaceSample& s : patch_samples(cornell(), 144))
+    if (cornell().patches[static_cast<std::size_t>(s.patch)].normal.y() > 0.99)
+      points.push_back({s.position, Vec3::UnitY(), s.patch});
+  LinkGatherOptions leaf_first, point_first;
+  leaf_first.classify_points = point_first.classify_points = true;
+  leaf_first.visibility_samples = point_first.visibility_samples = 64;
+  leaf_first.partial = point_first.partial = PartialVisibility::per_node;
+  leaf_first.leaf_first_points = 1;
+  point_first.leaf_first_points = std::numeric_limits<int>::max();
+  const LinkGather a(cornell(), kept, leaf_first), b(cornell(), kept, point_first);
+  const std::vector<Rgb> ha = a.gather(points), hb = b.gather(points);
+  LinkGatherOptions defaults_classified;
+  defaults_classified.classify_points = true;
+  defaults_classified.visibility_samples = 64;
+  defaults_classified.partial = PartialVisibility::per_node;
+  const LinkGather one(cornell(), kept, defaults_classified);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Rgb single = one.gather(std::span<const GatherPoint>(&points[i], 1))[0];
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(ha[i][c], hb[i][c]) << i;
+      EXPECT_EQ(ha[i][c], single[c]) << i;
+    }
+  }
+  EXPECT_GT(a.work().rays, 0u);  // some source is partly visible
+  // A source its leaf settled may be only possibly partly visible to the point's own test, and sampled.
+  EXPECT_LE(a.work().rays, b.work().rays);
+  EXPECT_NE(a.work().classifications, b.work().classifications);
 }
 
 TEST(LinkGather, BadOptionsNameTheOption) {

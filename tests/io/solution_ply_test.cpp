@@ -1,8 +1,10 @@
 #include "hrad/io/solution_ply.h"
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include <gtest/gtest.h>
 #include <OpenMesh/Core/IO/MeshIO.hh>
@@ -200,6 +202,96 @@ TEST(SolutionPly, InconsistentSolutionIsAnErrorAndLeavesNoFile) {
   test::TempDir dir;
   EXPECT_THROW(write_solution_ply(dir.path("bad.ply"), s, 1.0), Error);
   EXPECT_EQ(dir.entries(), 0u);
+}
+
+}  // namespace
+}  // namespace hrad
+
+namespace hrad {
+namespace {
+
+// Links as a hierarchical solve stores them: 3 roots (patches 0..2 of small_solution()'s ids), root
+// 0 split twice, two clusters, links between elements and clusters with hidden patches listed.
+SolutionLinks small_links() {
+  SolutionLinks l;
+  l.first_child = {4, -1, -1, -1, -1, 8, -1, -1, -1, -1, -1, -1};
+  l.cluster_parent = {-1, 0};
+  l.links = {
+      {0, 1, false, {}, {}}, {6, -2, true, {}, {0, 3}}, {-3, -2, false, {1}, {2, 3, 40000}}, {11, 9, true, {}, {}}};
+  return l;
+}
+
+// The links come back exactly; a file written without them reads back without them (and so does a
+// file of any other PLY writer); both are the same solution.
+TEST(SolutionPly, LinksRoundTripExactly) {
+  test::TempDir dir;
+  const SolutionLinks links = small_links();
+  write_solution_ply(dir.path("with.ply"), small_solution(), 1.0, &links);
+  write_solution_ply(dir.path("without.ply"), small_solution(), 1.0);
+  std::optional<SolutionLinks> read;
+  const Solution with = read_solution_ply(dir.path("with.ply"), &read);
+  ASSERT_TRUE(read.has_value());
+  EXPECT_TRUE(*read == links);
+  const Solution without = read_solution_ply(dir.path("without.ply"), &read);
+  EXPECT_FALSE(read.has_value());
+  EXPECT_EQ(with.faces, without.faces);
+  EXPECT_EQ(with.face_patch, without.face_patch);
+  // 17 bytes a link and 4 a listed patch, 4 a node and 4 a cluster, beside the header's lines.
+  const std::size_t listed = 6;
+  const std::size_t body =
+      4 * links.first_child.size() + 4 * links.cluster_parent.size() + 17 * links.links.size() + 4 * listed;
+  const std::string header_lines =
+      "element node 12\nproperty int first_child\nelement cluster 2\nproperty int parent\nelement link 4\n"
+      "property int p\nproperty int q\nproperty uchar partial\nproperty list int int hidden_p\n"
+      "property list int int hidden_q\n";
+  EXPECT_EQ(std::filesystem::file_size(dir.path("with.ply")),
+            std::filesystem::file_size(dir.path("without.ply")) + body + header_lines.size());
+}
+
+// A link element that does not describe a hierarchy is a one-line error naming the file, the
+// element and the record, whether written (nothing is left behind) or read.
+TEST(SolutionPly, MalformedLinksAreErrorsNamingTheRecord) {
+  test::TempDir dir;
+  SolutionLinks bad = small_links();
+  bad.links[1].q = -4;  // cluster 2 of 2
+  try {
+    write_solution_ply(dir.path("bad.ply"), small_solution(), 1.0, &bad);
+    ADD_FAILURE() << "written";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(dir.path("bad.ply") + ": cannot write solution: element link 1: q = -4", 0),
+              0u)
+        << e.what();
+  }
+  EXPECT_EQ(dir.entries(), 0u);
+  // Read: one triangle (patch 0), one node, no cluster, and links whose records are wrong.
+  const std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+      "property double radiosity_r\nproperty double radiosity_g\nproperty double radiosity_b\n"
+      "element face 1\nproperty list uchar int vertex_indices\nproperty double radiosity_r\n"
+      "property double radiosity_g\nproperty double radiosity_b\nproperty int patch\n"
+      "element node 1\nproperty int first_child\nelement cluster 0\nproperty int parent\nelement link 2\n"
+      "property int p\nproperty int q\nproperty uchar partial\nproperty list int int hidden_p\n"
+      "property list int int hidden_q\nend_header\n0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n3 0 1 2 1 1 1 0\n-1\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"0 0 0 0 0\n0 1 0 0 0\n", "element link 1: q = 1 is neither an element node"},
+      {"0 0 0 0 0\n0 0 2 0 0\n", "element link 1: partial = 2 is not an integer in [0, 1]"},
+      {"0 0 0 0 0\n0 -2 0 0 0\n", "element link 1: q = -2 is neither"},
+      {"0 0 0 0 2 5 5\n0 0 0 0 0\n", "element link 0: hidden_q lists patch 5"},
+      {"0 0 0 1 -1 0\n0 0 0 0 0\n", "element link 0: hidden_p = -1 is not an integer"},
+  };
+  for (const auto& [records, message] : cases) {
+    const std::string path = dir.write("links.ply", head + records);
+    std::optional<SolutionLinks> links;
+    try {
+      read_solution_ply(path, &links);
+      ADD_FAILURE() << records;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path + ": " + message, 0), 0u) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    }
+    // Read without asking for links, the solution itself is fine.
+    EXPECT_EQ(read_solution_ply(path).faces.size(), 1u);
+  }
 }
 
 }  // namespace

@@ -32,6 +32,10 @@ struct LinkGather::Scratch {
   // with its occluders, valid where `classified` equals `group` (the leaf's turn).
   NodeId leaf = kNoNode;
   std::uint32_t group = 0;
+  // Whether the leaf's points classify partly visible sources from the leaf first (see the header).
+  bool from_leaf = true;
+  // Per element, its occluders as seen from the point being gathered (valid during its walk).
+  std::vector<std::vector<int>> point_occluders;
   std::vector<std::uint32_t> classified;
   std::vector<PairClass> leaf_class;
   std::vector<std::vector<int>> leaf_occluders;
@@ -219,6 +223,15 @@ const LinkGather::PatchPair& LinkGather::patch_pair(int p, int q, GatherWork& w)
   return at->second;
 }
 
+const LinkGather::PatchPair& LinkGather::patch_pair_of(int q, Scratch& s, GatherWork& w) const {
+  const std::size_t i = static_cast<std::size_t>(q);
+  if (s.patch_found[i] != s.patch_group) {
+    s.patch_pair[i] = &patch_pair(solved_.hierarchy->node(s.leaf).patch, q, w);
+    s.patch_found[i] = s.patch_group;
+  }
+  return *s.patch_pair[i];
+}
+
 PairClass LinkGather::leaf_class(NodeId id, const std::vector<int>* candidates, Scratch& s, GatherWork& w) const {
   const std::size_t i = static_cast<std::size_t>(id);
   if (s.classified[i] != s.group) {
@@ -226,12 +239,7 @@ PairClass LinkGather::leaf_class(NodeId id, const std::vector<int>* candidates, 
     const ElementNode& a = h.node(s.leaf);
     const ElementNode& b = h.node(id);
     if (!candidates) {
-      const std::size_t q = static_cast<std::size_t>(b.patch);
-      if (s.patch_found[q] != s.patch_group) {
-        s.patch_pair[q] = &patch_pair(a.patch, b.patch, w);
-        s.patch_found[q] = s.patch_group;
-      }
-      const PatchPair& pair = *s.patch_pair[q];
+      const PatchPair& pair = patch_pair_of(b.patch, s, w);
       candidates = &pair.occluders;
       if (is_blocking(pair.cls)) {  // so is every pair of their elements
         s.leaf_class[i] = pair.cls;
@@ -272,21 +280,34 @@ Rgb LinkGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w) co
     if (!facing(node.polygon(), node.patch)) return;
     const Vec3& ny = scene_.patches[static_cast<std::size_t>(node.patch)].normal;
     const std::vector<int>* occluders = nullptr;
+    const std::vector<int>* below = nullptr;
     if (partial && occlusion_) {
-      // First from x's leaf, shared by the leaf's points (a leaf that sees all or none of the node
-      // decides every point on it), then from x where the leaf sees part of it.
-      PairClass c = leaf_class(id, candidates, s, w);
-      occluders = &s.leaf_occluders[static_cast<std::size_t>(id)];
-      if (c == PairClass::kPartial && options_.classify_points) {
+      // From x's leaf first when it classifies for several points (a leaf that sees all or none of
+      // the node decides every point on it), then from x where the leaf sees part of it; or from x
+      // straight away, among the enclosing node's occluders (the patch pair's at the top).
+      PairClass c = PairClass::kPartial;
+      std::vector<int>& from_point = s.point_occluders[static_cast<std::size_t>(id)];
+      if (s.from_leaf) {
+        c = leaf_class(id, candidates, s, w);
+        occluders = &s.leaf_occluders[static_cast<std::size_t>(id)];
+      } else if (!candidates) {
+        const PatchPair& pair = patch_pair_of(node.patch, s, w);
+        c = pair.cls;
+        occluders = &pair.occluders;
+      } else {
+        occluders = candidates;
+      }
+      if (c == PairClass::kPartial && (options_.classify_points || !s.from_leaf)) {
         c = visibility_->classify_among(std::span<const Vec3>(&x, 1), p.patch, node.polygon(), node.patch, occluders,
-                                        &s.occluders);
+                                        &from_point);
         ++w.classifications;
-        if (c == PairClass::kPartial) occluders = &s.occluders;
+        if (c == PairClass::kPartial) occluders = &from_point;
       }
       if (is_blocking(c)) return;
       partial = c == PairClass::kPartial;
+      // The children's candidates: complete for the shaft they are classified in first.
+      below = s.from_leaf ? &s.leaf_occluders[static_cast<std::size_t>(id)] : occluders;
       if (partial && !node.is_leaf() && options_.open_partly_visible) {
-        const std::vector<int>* below = &s.leaf_occluders[static_cast<std::size_t>(id)];
         for (NodeId child = node.first_child; child < node.first_child + 4; ++child) self(self, child, true, below);
         return;
       }
@@ -306,7 +327,7 @@ Rgb LinkGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w) co
     }
     if (!whole) {
       for (NodeId child = node.first_child; child < node.first_child + 4; ++child)
-        self(self, child, partial, partial && occlusion_ ? &s.leaf_occluders[static_cast<std::size_t>(id)] : nullptr);
+        self(self, child, partial, partial && occlusion_ ? below : nullptr);
       return;
     }
     if (f < 0.0) {
@@ -455,33 +476,36 @@ std::vector<Rgb> LinkGather::gather(std::span<const GatherPoint> points, Progres
     s.classified.assign(h.size(), 0);
     s.leaf_class.assign(h.size(), PairClass::kPartial);
     s.leaf_occluders.resize(h.size());
+    s.point_occluders.resize(h.size());
     s.patch_found.assign(static_cast<std::size_t>(h.patch_count()), 0);
     s.patch_pair.assign(static_cast<std::size_t>(h.patch_count()), nullptr);
     s.leaf = kNoNode;
     return s;
   });
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups.size() - 1, 1),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      Scratch& scratch = scratches.local();
-                      GatherWork local;
-                      std::size_t done = 0;
-                      for (std::size_t g = r.begin(); g != r.end(); ++g) {
-                        const NodeId leaf = order[groups[g]].first;
-                        if (scratch.leaf == kNoNode || h.node(leaf).patch != h.node(scratch.leaf).patch)
-                          ++scratch.patch_group;
-                        scratch.leaf = leaf;
-                        ++scratch.group;
-                        for (std::size_t j = groups[g]; j != groups[g + 1]; ++j) {
-                          out[order[j].second] = gather_point(points[order[j].second], scratch, local);
-                          ++done;
-                        }
-                      }
-                      {
-                        const std::lock_guard<std::mutex> lock(work_mutex_);
-                        work_ += local;
-                      }
-                      if (progress) progress->advance(done);
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, groups.size() - 1, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        Scratch& scratch = scratches.local();
+        GatherWork local;
+        std::size_t done = 0;
+        for (std::size_t g = r.begin(); g != r.end(); ++g) {
+          const NodeId leaf = order[groups[g]].first;
+          if (scratch.leaf == kNoNode || h.node(leaf).patch != h.node(scratch.leaf).patch) ++scratch.patch_group;
+          scratch.leaf = leaf;
+          ++scratch.group;
+          scratch.from_leaf =
+              !options_.classify_points || options_.partial != PartialVisibility::per_node ||
+              groups[g + 1] - groups[g] >= static_cast<std::size_t>(std::max(1, options_.leaf_first_points));
+          for (std::size_t j = groups[g]; j != groups[g + 1]; ++j) {
+            out[order[j].second] = gather_point(points[order[j].second], scratch, local);
+            ++done;
+          }
+        }
+        {
+          const std::lock_guard<std::mutex> lock(work_mutex_);
+          work_ += local;
+        }
+        if (progress) progress->advance(done);
+      });
   return out;
 }
 

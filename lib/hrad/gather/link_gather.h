@@ -23,7 +23,18 @@
 // sampling; PartialVisibility::shared, as leaf_gather.h), or with `visibility_samples` stratified
 // points on each (per_node), the kernel-weighted visible fraction multiplying the factor.
 // classify_points adds a shaft test from x itself before sampling (no ray where x sees all or none
-// of the source): ~15 rays' cost per test, for less noise per ray. A cluster link lists the patches
+// of the source): ~15 rays' cost per test, for less noise per ray. With `visibility_samples` points
+// on each partly visible source (per_node), the leaf's test then only saves point tests, which pays
+// where the leaf holds several points: a leaf with fewer than `leaf_first_points` of the batch's
+// points classifies from each point straight away (among the patch pair's occluders, then each
+// opened node's). The values are the same either way, so they do not depend on the batch: a leaf
+// that sees all or none of a source decides it for each of its points (the shaft from the leaf
+// holds the shaft from each point), where the point's own test may only find the source possibly
+// partly visible (shaft culling is conservative), and then its samples all pass, or all are
+// blocked, and the fraction is exactly 1 or 0; where the leaf sees part of the source the point's
+// test decides in both cases, and a ray meets only occluders that both candidate lists hold. With
+// shared rays the sources flagged partly visible share a point's rays, so such a flag would move
+// the others' rays: there the leaf always classifies first. A cluster link lists the patches
 // of either end that see nothing of the other: those neither gather nor are gathered through it.
 //
 // Accuracy: a coarse link's source, taken whole, enters with its mean radiosity B_N; over its
@@ -90,6 +101,10 @@ struct LinkGatherOptions {
   /// sampled (fewer rays where the point sees all or none of it). Off: sampled among the leaf's
   /// occluders, a shaft test saved per point and source.
   bool classify_points = false;
+  /// With classify_points and per_node, a leaf holding fewer of gather()'s points than this
+  /// classifies each partly visible source from each point straight away, without the polygon-sized
+  /// shaft test from the leaf first (see the header); 1: always from the leaf first.
+  int leaf_first_points = 4;
   std::uint64_t seed = 1;
 };
 
@@ -137,6 +152,8 @@ class LinkGather final : public FinalGather {
   };
   /// The pair (patch p, patch q), classified on first use.
   const PatchPair& patch_pair(int p, int q, GatherWork& w) const;
+  /// The pair (s.leaf's patch, patch q), looked up once per patch's turn.
+  const PatchPair& patch_pair_of(int q, Scratch& s, GatherWork& w) const;
   /// The receiver nodes on `leaf`'s path, as dense indices (elements, then clusters after them).
   void path(NodeId leaf, std::vector<std::size_t>* out) const;
 

@@ -24,7 +24,9 @@ constexpr const char* kPatch = "patch";
 constexpr const char* kZUpComment =
     "hrad axes: stored (x, -z, y) of the scene's (x, y, z): +Z up, as Blender imports PLY";
 
-void check_consistent(const std::string& path, const Solution& s) {
+std::string links_defect(const SolutionLinks& links);
+
+void check_consistent(const std::string& path, const Solution& s, const SolutionLinks* links) {
   auto fail = [&](const std::string& what) { throw Error(fmt::format("{}: cannot write solution: {}", path, what)); };
   if (s.vertex_radiosity.size() != s.vertices.size())
     fail(fmt::format("{} vertex radiosities for {} vertices", s.vertex_radiosity.size(), s.vertices.size()));
@@ -39,6 +41,38 @@ void check_consistent(const std::string& path, const Solution& s) {
         fail(fmt::format("face {} has vertex index {} out of range", f, v));
     if (s.face_patch[f] < 0) fail(fmt::format("face {} has patch id {}", f, s.face_patch[f]));
   }
+  if (links != nullptr)
+    if (const std::string defect = links_defect(*links); !defect.empty()) fail(defect);
+}
+
+// What is wrong with `links` (empty when nothing): the ranges the header of solution_ply.h states.
+std::string links_defect(const SolutionLinks& links) {
+  const std::int64_t nodes = static_cast<std::int64_t>(links.first_child.size());
+  const std::int64_t clusters = static_cast<std::int64_t>(links.cluster_parent.size());
+  for (std::int64_t i = 0; i < nodes; ++i) {
+    const std::int64_t c = links.first_child[static_cast<std::size_t>(i)];
+    if (c != -1 && !(c > i && c + 3 < nodes))
+      return fmt::format("element node {}: first_child {} is neither -1 nor a block of 4 of the {} nodes after it", i,
+                         c, nodes);
+  }
+  for (std::int64_t k = 0; k < clusters; ++k) {
+    const std::int64_t p = links.cluster_parent[static_cast<std::size_t>(k)];
+    if (!(p == -1 ? k == 0 : p >= 0 && p < k))
+      return fmt::format("element cluster {}: parent {} is not a cluster before it (-1 for cluster 0 only)", k, p);
+  }
+  for (std::size_t k = 0; k < links.links.size(); ++k) {
+    const SolutionLinks::Link& l = links.links[k];
+    for (const auto& [name, end] : {std::pair{"p", l.p}, std::pair{"q", l.q}})
+      if (!(end >= 0 ? end < nodes : end <= -2 && -2 - static_cast<std::int64_t>(end) < clusters))
+        return fmt::format("element link {}: {} = {} is neither an element node (0 to {}) nor a cluster (-2 to {})", k,
+                           name, end, nodes - 1, -1 - clusters);
+    for (const auto& [name, list] : {std::pair{"hidden_p", &l.hidden_p}, std::pair{"hidden_q", &l.hidden_q}})
+      for (std::size_t i = 0; i < list->size(); ++i)
+        if ((*list)[i] < 0 || (i > 0 && (*list)[i] <= (*list)[i - 1]))
+          return fmt::format("element link {}: {} lists patch {} (patch ids are >= 0 and ascending)", k, name,
+                             (*list)[i]);
+  }
+  return {};
 }
 
 template <typename T>
@@ -57,10 +91,64 @@ const std::vector<double>& values_of(const std::string& path, const PlyElement& 
   return p->values;
 }
 
+// A property of stored links whose values are integers in [lo, hi] (scalars or list items).
+const PlyProperty& integers_of(const std::string& path, const PlyElement& e, const char* name, bool list, double lo,
+                               double hi) {
+  const PlyProperty* p = e.property(name);
+  if (p == nullptr || p->list != list)
+    throw Error(fmt::format("{}: element {} has no {}property '{}'", path, e.name, list ? "list " : "", name));
+  for (std::size_t i = 0; i < p->values.size(); ++i) {
+    const double v = p->values[i];
+    if (!(v >= lo && v <= hi && v == std::floor(v))) {
+      std::size_t record = i;
+      if (list)
+        record =
+            static_cast<std::size_t>(std::upper_bound(p->offsets.begin(), p->offsets.end(), i) - p->offsets.begin()) -
+            1;
+      throw Error(fmt::format("{}: element {} {}: {} = {} is not an integer in [{}, {}]", path, e.name, record, name, v,
+                              lo, hi));
+    }
+  }
+  return *p;
+}
+
+SolutionLinks read_links(const std::string& path, const PlyData& ply) {
+  const PlyElement* node = ply.element("node");
+  const PlyElement* cluster = ply.element("cluster");
+  const PlyElement* link = ply.element("link");
+  if (node == nullptr) throw Error(fmt::format("{}: element link without element node", path));
+  constexpr double kIntMin = -2147483648.0, kIntMax = 2147483647.0;
+  SolutionLinks out;
+  for (double v : integers_of(path, *node, "first_child", false, -1, kIntMax).values)
+    out.first_child.push_back(static_cast<std::int32_t>(v));
+  if (cluster != nullptr)
+    for (double v : integers_of(path, *cluster, "parent", false, -1, kIntMax).values)
+      out.cluster_parent.push_back(static_cast<std::int32_t>(v));
+  const PlyProperty& p = integers_of(path, *link, "p", false, kIntMin, kIntMax);
+  const PlyProperty& q = integers_of(path, *link, "q", false, kIntMin, kIntMax);
+  const PlyProperty& partial = integers_of(path, *link, "partial", false, 0, 1);
+  const PlyProperty& hidden_p = integers_of(path, *link, "hidden_p", true, 0, kIntMax);
+  const PlyProperty& hidden_q = integers_of(path, *link, "hidden_q", true, 0, kIntMax);
+  out.links.resize(link->count);
+  for (std::size_t k = 0; k < link->count; ++k) {
+    SolutionLinks::Link& l = out.links[k];
+    l.p = static_cast<std::int32_t>(p.values[k]);
+    l.q = static_cast<std::int32_t>(q.values[k]);
+    l.partial = partial.values[k] != 0.0;
+    for (std::size_t i = hidden_p.offsets[k]; i < hidden_p.offsets[k + 1]; ++i)
+      l.hidden_p.push_back(static_cast<std::int32_t>(hidden_p.values[i]));
+    for (std::size_t i = hidden_q.offsets[k]; i < hidden_q.offsets[k + 1]; ++i)
+      l.hidden_q.push_back(static_cast<std::int32_t>(hidden_q.values[i]));
+  }
+  if (const std::string defect = links_defect(out); !defect.empty()) throw Error(fmt::format("{}: {}", path, defect));
+  return out;
+}
+
 }  // namespace
 
-void write_solution_ply(std::ostream& out, const Solution& solution, double exposure, const std::string& path) {
-  check_consistent(path, solution);
+void write_solution_ply(std::ostream& out, const Solution& solution, double exposure, const std::string& path,
+                        const SolutionLinks* links) {
+  check_consistent(path, solution, links);
   std::string header = "ply\nformat binary_little_endian 1.0\n";
   header += "comment written by hrad: leaf elements with per-vertex and per-element radiosity\n";
   header += fmt::format("comment {}\n", kZUpComment);
@@ -71,7 +159,15 @@ void write_solution_ply(std::ostream& out, const Solution& solution, double expo
   header += fmt::format("element face {}\n", solution.faces.size());
   header += "property list uchar int vertex_indices\n";
   for (const char* c : kChannel) header += fmt::format("property double {}\n", c);
-  header += fmt::format("property int {}\nend_header\n", kPatch);
+  header += fmt::format("property int {}\n", kPatch);
+  if (links != nullptr) {
+    header += fmt::format("element node {}\nproperty int first_child\n", links->first_child.size());
+    header += fmt::format("element cluster {}\nproperty int parent\n", links->cluster_parent.size());
+    header += fmt::format("element link {}\n", links->links.size());
+    header += "property int p\nproperty int q\nproperty uchar partial\n";
+    header += "property list int int hidden_p\nproperty list int int hidden_q\n";
+  }
+  header += "end_header\n";
 
   std::string body;
   body.reserve(solution.vertices.size() * 51 + solution.faces.size() * 45);
@@ -90,17 +186,31 @@ void write_solution_ply(std::ostream& out, const Solution& solution, double expo
     for (int c = 0; c < 3; ++c) put(body, solution.face_radiosity[f][c]);
     put(body, static_cast<std::int32_t>(solution.face_patch[f]));
   }
+  if (links != nullptr) {
+    for (std::int32_t c : links->first_child) put(body, c);
+    for (std::int32_t c : links->cluster_parent) put(body, c);
+    for (const SolutionLinks::Link& l : links->links) {
+      put(body, l.p);
+      put(body, l.q);
+      put(body, static_cast<std::uint8_t>(l.partial ? 1 : 0));
+      for (const std::vector<std::int32_t>* list : {&l.hidden_p, &l.hidden_q}) {
+        put(body, static_cast<std::int32_t>(list->size()));
+        for (std::int32_t patch : *list) put(body, patch);
+      }
+    }
+  }
   out << header;
   out.write(body.data(), static_cast<std::streamsize>(body.size()));
 }
 
-void write_solution_ply(const std::string& path, const Solution& solution, double exposure) {
-  check_consistent(path, solution);
+void write_solution_ply(const std::string& path, const Solution& solution, double exposure,
+                        const SolutionLinks* links) {
+  check_consistent(path, solution, links);
   write_file_atomically(
-      path, [&](std::ostream& out) { write_solution_ply(out, solution, exposure, path); }, /*binary=*/true);
+      path, [&](std::ostream& out) { write_solution_ply(out, solution, exposure, path, links); }, /*binary=*/true);
 }
 
-Solution read_solution_ply(const std::string& path) {
+Solution read_solution_ply(const std::string& path, std::optional<SolutionLinks>* links) {
   const std::string bytes = read_input_file(path);
   if (!looks_like_ply(bytes))
     throw Error(fmt::format("{}: not a readable PLY file: it does not start with 'ply'", path));
@@ -174,6 +284,10 @@ Solution read_solution_ply(const std::string& path) {
   s.patch_radiosity.resize(patches, Rgb::Zero());
   for (int p = 0; p < patches; ++p)
     if (area[p] > 0.0) s.patch_radiosity[p] = sum[p] / area[p];
+  if (links != nullptr) {
+    links->reset();
+    if (ply.element("link") != nullptr) *links = read_links(path, ply);
+  }
   return s;
 }
 

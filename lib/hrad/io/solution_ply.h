@@ -11,26 +11,66 @@
 // and the reader turns a file with that comment back exactly (a permutation and a sign change).
 // patch_radiosity is not stored: the reader recomputes it as the area-weighted mean of the faces of
 // each patch, which is its definition in Solution.
+//
+// A hierarchical solve's file also carries what a final gather through its links needs
+// (gather/stored_links.h), as three more elements a PLY viewer skips:
+//   element node:    first_child (int: the first of the element's 4 children, -1 for a leaf), one
+//                    per element of the hierarchy by id (ids below the patch count are the patches'
+//                    roots): the splits in the order they were made, so the hierarchy is rebuilt
+//                    from the scene by the same split rule (4 bytes a node);
+//   element cluster: parent (int: the parent cluster, -1 for the root), one per cluster of the
+//                    volume hierarchy above the patches; none when the solve did not cluster
+//                    (4 bytes a cluster);
+//   element link:    p q (int: the ends, an element id >= 0 or a cluster -2 - index), partial
+//                    (uchar: 1 when the refinement found the pair partly visible), hidden_p hidden_q
+//                    (list int int: the patches of a cluster end that see nothing of the other end):
+//                    17 bytes a link plus 4 per listed patch.
+// The leaves' radiosities are the faces' (faces are the leaves in depth-first order, patch by patch);
+// an interior element's is the area mean of its leaves.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
 
 namespace hrad {
 
+/// The hierarchy and links of a hierarchical solve as stored (see above).
+struct SolutionLinks {
+  std::vector<std::int32_t> first_child;     ///< per element node
+  std::vector<std::int32_t> cluster_parent;  ///< per cluster; empty without clusters
+  struct Link {
+    std::int32_t p = -1, q = -1;
+    bool partial = false;
+    std::vector<std::int32_t> hidden_p, hidden_q;  ///< patch ids, ascending
+    bool operator==(const Link&) const = default;
+  };
+  std::vector<Link> links;
+  bool operator==(const SolutionLinks&) const = default;
+};
+
 /// Writes `solution` to `path` atomically (temporary file + rename); vertex colours use
 /// tone_map(..., exposure). Throws hrad::Error naming `path` if the arrays are inconsistent or
 /// the file cannot be written.
-void write_solution_ply(const std::string& path, const Solution& solution, double exposure);
+/// With `links`, they are written too.
+void write_solution_ply(const std::string& path, const Solution& solution, double exposure,
+                        const SolutionLinks* links = nullptr);
 /// The same to a stream (binary); `path` only names the file in messages.
-void write_solution_ply(std::ostream& out, const Solution& solution, double exposure, const std::string& path);
+void write_solution_ply(std::ostream& out, const Solution& solution, double exposure, const std::string& path,
+                        const SolutionLinks* links = nullptr);
 
 /// Reads a PLY written by write_solution_ply. A missing or unreadable file, or one without the
-/// radiosity and patch properties, is an hrad::Error naming `path`.
-Solution read_solution_ply(const std::string& path);
+/// radiosity and patch properties, is an hrad::Error naming `path`. `links`, when given, receives
+/// the stored links (nullopt when the file has no 'link' element); a link element without its node
+/// element, or a value out of range (an end that is neither a stored element nor a stored cluster,
+/// a flag other than 0 or 1, a split that cannot have been made), is an hrad::Error naming `path`,
+/// the element and the record.
+Solution read_solution_ply(const std::string& path, std::optional<SolutionLinks>* links = nullptr);
 
 /// Throws hrad::Error naming `solution_path` when a face's patch id is not a patch of `scene`
 /// (read from `scene_path`): a solution of another scene.
