@@ -6,6 +6,8 @@
 //     the probes' (classified, each partly visible node sampled on its own) and leaf by leaf
 //     (tolerance 0, the sweep's reference), with the work per point;
 //   * BM_LinkGatherPoints: the same points gathered through the solve's links (gather/link_gather.h);
+//   * BM_LinkGatherLeafFirst: the probes' mode through the links, classifying from each leaf first or
+//     from each point where the leaf holds few points;
 //   * BM_LeafFactors: all leaves' point factors at those points, the plain contour sum against a
 //     relative accuracy of 1e-9 (what the gather gives up by using the plain sum).
 // Run one core at a time and quote ratios from one run:
@@ -140,6 +142,25 @@ BENCHMARK(BM_LinkGatherPoints)
     ->ArgsProduct({{0}, {256}, {0}, {128, 256}, {1}})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
+
+// The probes' mode through the links (64 points on each partly visible source, each classified
+// from the point): a leaf holding fewer than leaf_first_points of the points classifies from each
+// point straight away instead of from its polygon first (args: points per patch, leaf_first_points;
+// 1 always classifies from the leaf first). The values are the same (link_gather_test).
+void BM_LinkGatherLeafFirst(benchmark::State& state) {
+  tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  const Solved& s = solved(false);
+  LinkGatherOptions o;
+  o.classify_points = true;
+  o.visibility_samples = 64;
+  o.partial = PartialVisibility::per_node;
+  o.leaf_first_points = static_cast<int>(state.range(1));
+  const LinkGather gather(cornell(), s.kept, o);
+  const std::vector<GatherPoint> points = surface_points(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(gather.gather(points).data());
+  set_work(state, gather.work(), s.solution.faces.size());
+}
+BENCHMARK(BM_LinkGatherLeafFirst)->ArgsProduct({{16, 256}, {1, 4}})->Unit(benchmark::kSecond)->Iterations(1);
 
 void BM_LeafFactors(benchmark::State& state) {
   const Solution& s = solution(false);
