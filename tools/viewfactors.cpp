@@ -61,6 +61,9 @@
 //   --sky-temperature K    the sky's temperature for the rows' remainder (default 0 K)
 //   --threads N        worker threads (default: all cores); the result does not depend on it
 //   --quiet            no progress on stderr
+// Before any pair is computed, the matrix's memory and --out's size are estimated from a sample of
+// pairs, the number of surfaces and the format (view_factor_work.h); work beyond the machine's memory or
+// the disk's free space is refused with the estimate and the option to change.
 // Progress (pairs done, elapsed, time left) goes to stderr every 2 s on long runs; a summary to
 // stdout. Bad options and files are a one-line error naming the option or file:line, before any
 // work; outputs are written atomically and never replace an input.
@@ -75,6 +78,7 @@
 
 #include "commands.h"
 #include "hrad/core/error.h"
+#include "hrad/core/memory.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/points_csv.h"
 #include "hrad/io/scene_reader.h"
@@ -85,6 +89,7 @@
 #include "hrad/viewfactors/radiant_exchange.h"
 #include "hrad/viewfactors/view_factor_matrix.h"
 #include "hrad/viewfactors/view_factor_report.h"
+#include "hrad/viewfactors/view_factor_work.h"
 #include "hrad/viewfactors/vs3_file.h"
 
 namespace hrad::cli {
@@ -94,6 +99,14 @@ double peak_memory_mb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports kilobytes
+}
+
+// Bytes free for an unprivileged writer on the file system that will hold `path` (0: unknown).
+double free_disk_bytes(const std::string& path) {
+  std::error_code error;
+  const std::filesystem::path dir = std::filesystem::absolute(path, error).parent_path();
+  const std::filesystem::space_info space = std::filesystem::space(dir, error);
+  return error ? 0.0 : static_cast<double>(space.available);
 }
 
 }  // namespace
@@ -149,8 +162,8 @@ void add_viewfactors_command(CLI::App& app) {
       throw Error(fmt::format("--sample-below: {} is not in [0, 1)", args->sample_below));
     if (args->sample_below > 0.0 && args->exact)
       throw Error("--sample-below and --exact exclude each other (the exact region samples nothing)");
-    if (args->far_rays < 4 || args->far_rays > 1 << 24)
-      throw Error(fmt::format("--far-rays: {} is not in [4, 16777216]", args->far_rays));
+    if (args->far_rays < kMinSampledRays || args->far_rays > 1 << 24)
+      throw Error(fmt::format("--far-rays: {} is not in [{}, 16777216]", args->far_rays, kMinSampledRays));
     if (args->threads < 0) throw Error(fmt::format("--threads: {} is negative", args->threads));
     if (args->boundary.empty() != args->heat.empty())
       throw Error(args->heat.empty() ? "--boundary needs --heat Q.csv" : "--heat needs --boundary B.csv");
@@ -235,11 +248,20 @@ void add_viewfactors_command(CLI::App& app) {
     std::vector<SurfaceCondition> conditions;
     if (!args->boundary.empty()) conditions = read_boundary_csv(args->boundary, units.size());
 
+    // Refused before any pair is computed when the machine cannot hold the matrix or its output.
+    const double memory = available_memory_bytes(), disk = free_disk_bytes(args->out);
+    ViewFactorWork work;
+    options.before_pairs = [&](const PairSample& sample) {
+      work = estimate_view_factor_work(sample, units.size(), static_cast<double>(scene.patches.size()), format);
+      check_view_factor_work(work, options, format, args->out, memory, disk);
+    };
     ViewFactorMatrix m = compute_view_factors(scene, units, options);
     ClosureReport closure;
     if (args->enforce_closure) closure = enforce_closure(m);
     write_file_atomically(args->out, [&](std::ostream& o) { write_matrix(o, m, units, format); });
-    const nlohmann::json report = view_factor_report(m, units, options, args->enforce_closure ? &closure : nullptr);
+    nlohmann::json report = view_factor_report(m, units, options, args->enforce_closure ? &closure : nullptr);
+    report["estimate"] = {
+        {"stored_pairs", work.stored_pairs}, {"memory_bytes", work.memory_bytes}, {"output_bytes", work.output_bytes}};
     if (!conditions.empty()) {
       const RadiantExchange x = solve_radiant_exchange(m, units.emissivity, conditions, args->sky_temperature);
       write_file_atomically(args->heat, [&](std::ostream& o) {

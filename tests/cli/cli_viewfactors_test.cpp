@@ -99,6 +99,47 @@ TEST(CliViewFactors, BadOptionsAreOneLineErrorsWithNothingWritten) {
   EXPECT_NE(ext.err.find("--out"), std::string::npos) << ext.err;
 }
 
+// A closed box of 3,456 quads (all pairs on different walls see each other: about 5 M pairs to
+// store, ~240 MB) in a process limited to 250 MB: refused before any pair is computed, in one line
+// naming --threshold and the estimate, with nothing written.
+TEST(CliViewFactors, WorkBeyondMemoryIsRefusedWithAnEstimate) {
+  TempDir dir;
+  std::ostringstream obj;
+  const int k = 24;
+  int vertex = 0;
+  // Wall w: the plane axis a = side, quads over the other two axes, wound to face inwards.
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side)
+      for (int i = 0; i < k; ++i)
+        for (int j = 0; j < k; ++j) {
+          const double c[4][2] = {
+              {double(i), double(j)}, {i + 1.0, double(j)}, {i + 1.0, j + 1.0}, {double(i), j + 1.0}};
+          for (int v = 0; v < 4; ++v) {
+            const int o = side == 0 ? v : 3 - v;
+            double p[3];
+            p[axis] = side * k;
+            p[(axis + 1) % 3] = c[o][0];
+            p[(axis + 2) % 3] = c[o][1];
+            obj << "v " << p[0] << " " << p[1] << " " << p[2] << "\n";
+          }
+          obj << "f " << vertex + 1 << " " << vertex + 2 << " " << vertex + 3 << " " << vertex + 4 << "\n";
+          vertex += 4;
+        }
+  const std::string scene = dir.write("box.obj", obj.str());
+  const std::string out = dir.path("F.mtx");
+  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 250000; '" HRAD_EXECUTABLE "' viewfactors " + scene +
+                                   " --out " + out + " --quiet",
+                               dir);
+  EXPECT_NE(r.exit_code, 0);
+  // One error line (after the reader's warning that the faces have no material).
+  int errors = 0;
+  for (const std::string& line : r.err_lines()) errors += line.find("error") != std::string::npos ? 1 : 0;
+  EXPECT_EQ(errors, 1) << r.err;
+  EXPECT_NE(r.err.find("--threshold"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("MB of memory"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 }  // namespace
 }  // namespace hrad::test
 

@@ -3,12 +3,17 @@
 // a shaft test (sample_below), on closed boxes and on a small generated urban model.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
+#include <fmt/format.h>
+
+#include "hrad/core/error.h"
 #include "hrad/experiments/scene_generator.h"
 #include "hrad/experiments/urban_generator.h"
 #include "hrad/formfactor/polygon_to_polygon.h"
 #include "hrad/viewfactors/pair_bound.h"
+#include "hrad/viewfactors/view_factor_work.h"
 #include "viewfactor_test_scenes.h"
 
 namespace hrad::test {
@@ -183,6 +188,88 @@ TEST(ViewFactorScale, FarPairsSampledAgreeWithShaftTests) {
                            .from_to;
       EXPECT_LE(m.factor(u, k), f * (1 + 1e-5)) << u << " " << v;
     }
+  }
+}
+
+// The work estimate's sample of pairs on the small urban model: a high estimate of the pairs
+// actually stored (at least them, and within 3 binomial standard errors of 4096 draws plus their
+// share above them), and the refusals it leads to: memory names --threshold, a dense output beyond
+// the disk names the sparse formats, and an unknown limit (0) refuses nothing.
+TEST(ViewFactorScale, WorkEstimateFromSampledPairs) {
+  const SmallUrban& urban = small_urban();
+  ViewFactorOptions options = urban.options;
+  options.threshold = 1e-4;
+  PairSample sample;
+  options.before_pairs = [&](const PairSample& s) { sample = s; };
+  const ViewFactorMatrix m = compute_view_factors(urban.scene, urban.units, options);
+  ASSERT_EQ(sample.sampled, 4096);
+  EXPECT_EQ(sample.pairs, double(m.counters.patch_pairs));
+  const double stored = 0.5 * double(m.nonzeros());  // face units: no diagonal
+  const double se = std::sqrt(stored / sample.pairs * (1 - stored / sample.pairs) / sample.sampled) * sample.pairs;
+  EXPECT_GE(sample.stored, stored);
+  EXPECT_LE(sample.stored, stored + 6 * se);
+
+  const double n = m.n;
+  const ViewFactorWork small = estimate_view_factor_work(sample, n, n, MatrixFormat::kDense);
+  EXPECT_GE(small.output_bytes, 2 * n * n);    // every value at least "0,"
+  EXPECT_GE(small.memory_bytes, stored * 24);  // two entries of (int, double) per stored pair
+  // A city's proportions (20k faces, 2.4% of pairs stored): the sparse output is the smaller.
+  PairSample city;
+  city.pairs = 2e8;
+  city.stored = 4.8e6;
+  const ViewFactorWork dense = estimate_view_factor_work(city, 2e4, 2e4, MatrixFormat::kDense);
+  const ViewFactorWork sparse = estimate_view_factor_work(city, 2e4, 2e4, MatrixFormat::kMatrixMarket);
+  EXPECT_LT(sparse.output_bytes, 0.8 * dense.output_bytes);
+  auto refusal = [&](const ViewFactorWork& w, MatrixFormat f, double memory, double disk) -> std::string {
+    try {
+      check_view_factor_work(w, options, f, "F", memory, disk);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(refusal(dense, MatrixFormat::kDense, 0, 0), "");
+  EXPECT_NE(refusal(dense, MatrixFormat::kDense, dense.memory_bytes, 0).find("--threshold"), std::string::npos);
+  EXPECT_NE(refusal(dense, MatrixFormat::kDense, 0, dense.output_bytes).find("sparse format"), std::string::npos);
+  EXPECT_EQ(refusal(sparse, MatrixFormat::kMatrixMarket, 0, dense.output_bytes), "");
+}
+
+// Calibration of the reported row errors, with far pairs sampled and a row budget, against a
+// reference with 1024 rays per partly visible pair (its own reported errors combined). If the
+// errors are honest standard errors of unbiased row sums (after the row cap, which only moves a
+// row above 1 towards its true value), a row differs from the reference by more than k combined
+// errors (less what it dropped, on the low side) with the normal tails' probability p_k at most:
+// rows beyond k = 1, 2, 3 must be at most N p_k + 3 sqrt(N p_k (1 - p_k)) + 1 of the N sampled
+// rows (3 binomial standard deviations; rows share pairs, so they are not quite independent).
+TEST(ViewFactorScale, RowErrorsAreCalibratedAgainstAReference) {
+  const SmallUrban& urban = small_urban();
+  ViewFactorOptions reference = urban.options;
+  reference.pair.min_rays = reference.pair.max_rays = 1024;
+  const ViewFactorMatrix r = compute_view_factors(urban.scene, urban.units, reference);
+  ViewFactorOptions far = urban.options;
+  far.sample_below = 3e-3;
+  far.threshold = 1e-4;
+  far.row_error = 0.01;
+  const ViewFactorMatrix m = compute_view_factors(urban.scene, urban.units, far);
+  ASSERT_GT(m.counters.shaft_skipped, 0u);
+  int rows = 0;
+  std::array<int, 3> beyond{};
+  for (int u = 0; u < m.n; ++u) {
+    const double sigma = std::hypot(m.sampling_error[u], r.sampling_error[u]);
+    if (!(sigma > 0.0)) continue;
+    ++rows;
+    const double d = m.row_sum(u) - r.row_sum(u);
+    const double off = d > 0.0 ? d : std::max(0.0, -d - m.skipped_bound[u]);
+    for (int k = 1; k <= 3; ++k) beyond[k - 1] += off > k * sigma ? 1 : 0;
+  }
+  ASSERT_GT(rows, 100);
+  RecordProperty("rows", rows);
+  RecordProperty("beyond_1_2_3", fmt::format("{} {} {}", beyond[0], beyond[1], beyond[2]));
+  const std::array<double, 3> tail = {std::erfc(1 / std::sqrt(2.0)), std::erfc(2 / std::sqrt(2.0)),
+                                      std::erfc(3 / std::sqrt(2.0))};
+  for (int k = 0; k < 3; ++k) {
+    const double expected = rows * tail[k];
+    EXPECT_LE(beyond[k], expected + 3 * std::sqrt(expected * (1 - tail[k])) + 1) << "k = " << k + 1 << ", " << rows;
   }
 }
 

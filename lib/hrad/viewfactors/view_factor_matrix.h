@@ -6,6 +6,9 @@
 //   * closure where visibility is exact: rows of a closed enclosure whose pairs are all classified
 //     exactly (fully visible or hidden) sum to 1 to the closed form's accuracy; an open model's
 //     remainder 1 - sum_v F_uv is what the face sends to the sky;
+//   * no row above 1: a row whose estimated (sampled) entries would take it above 1 has them
+//     scaled down symmetrically until it sums to 1 (cap_rows() in the .cpp; `capped` says how
+//     much each row lost);
 //   * no dependence on the unit of length and no epsilon offsets (pair_exchange.h).
 // With a threshold T, a pair whose unobstructed factors are below T both ways is dropped before
 // its shaft test: first by a cheap bound from distance and heights (pair_bound.h), then by its
@@ -14,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "hrad/core/progress.h"
@@ -22,6 +26,19 @@
 #include "hrad/viewfactors/surface_units.h"
 
 namespace hrad {
+
+/// Pairs drawn at random before the computation and screened as it screens them: estimates of how
+/// many pairs the matrix will store and how many wait for rays (with row_error), for refusing work
+/// the machine cannot hold before it starts (view_factor_work.h).
+struct PairSample {
+  double pairs = 0.0;     ///< eligible pairs in all
+  double stored = 0.0;    ///< pairs estimated to be stored (share + 3 standard errors, times pairs)
+  double deferred = 0.0;  ///< of those, partly visible pairs waiting for their rays (row_error)
+  int sampled = 0;        ///< pairs drawn
+};
+
+/// Pairs drawn for the PairSample.
+inline constexpr std::uint64_t kWorkSamples = 4096;
 
 struct ViewFactorOptions {
   PairExchangeOptions pair;
@@ -40,6 +57,9 @@ struct ViewFactorOptions {
   bool exact_shaft_contacts = true;
   int threads = 0;  ///< 0: all cores; the result does not depend on it
   ProgressSink progress;
+  /// When set: called with a PairSample before any pair of the matrix is computed; it may throw
+  /// to refuse the work.
+  std::function<void(const PairSample&)> before_pairs;
 };
 
 struct ViewFactorCounters {
@@ -53,6 +73,7 @@ struct ViewFactorCounters {
   std::uint64_t rays = 0;          ///< segments cast for partly visible pairs
   double classify_seconds = 0.0;   ///< classification and closed forms (with row_error: before sampling)
   std::uint64_t regions = 0;       ///< exact visible regions computed
+  std::uint64_t capped_rows = 0;   ///< rows whose estimated sum exceeded 1, scaled down to 1 (row cap)
   double seconds = 0.0;
 };
 
@@ -66,6 +87,7 @@ struct ViewFactorMatrix {
   std::vector<double> exchange;         ///< E_uv
   std::vector<double> sampling_error;   ///< standard error of each row sum from sampled visibility
   std::vector<double> skipped_bound;    ///< bound of the factor mass in each row's skipped pairs
+  std::vector<double> capped;           ///< factor each row lost to the row cap (0 in most rows)
   ViewFactorCounters counters;
 
   double factor(int u, std::int64_t k) const {

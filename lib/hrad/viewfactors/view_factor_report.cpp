@@ -8,7 +8,8 @@ namespace hrad {
 nlohmann::json view_factor_report(const ViewFactorMatrix& m, const SurfaceUnits& units,
                                   const ViewFactorOptions& options, const ClosureReport* closure) {
   nlohmann::json surfaces = nlohmann::json::array();
-  double min_sum = m.n > 0 ? INFINITY : 0.0, max_sum = 0.0, max_error = 0.0, max_skipped = 0.0, sky = 0.0;
+  double min_sum = m.n > 0 ? INFINITY : 0.0, max_sum = 0.0, max_error = 0.0, max_skipped = 0.0, max_capped = 0.0,
+         sky = 0.0;
   for (int u = 0; u < m.n; ++u) {
     const auto i = static_cast<std::size_t>(u);
     const double s = m.row_sum(u);
@@ -16,6 +17,7 @@ nlohmann::json view_factor_report(const ViewFactorMatrix& m, const SurfaceUnits&
     max_sum = std::max(max_sum, s);
     max_error = std::max(max_error, m.sampling_error[i]);
     max_skipped = std::max(max_skipped, m.skipped_bound[i]);
+    max_capped = std::max(max_capped, m.capped[i]);
     sky += m.area[i] * std::max(0.0, 1.0 - s);
     surfaces.push_back({{"name", units.names[i]},
                         {"area", m.area[i]},
@@ -23,7 +25,8 @@ nlohmann::json view_factor_report(const ViewFactorMatrix& m, const SurfaceUnits&
                         {"row_sum", s},
                         {"sky", 1.0 - s},
                         {"sampling_error", m.sampling_error[i]},
-                        {"skipped_bound", m.skipped_bound[i]}});
+                        {"skipped_bound", m.skipped_bound[i]},
+                        {"capped", m.capped[i]}});
   }
   const ViewFactorCounters& c = m.counters;
   nlohmann::json r = {
@@ -39,6 +42,8 @@ nlohmann::json view_factor_report(const ViewFactorMatrix& m, const SurfaceUnits&
       {"sample_below", options.sample_below},
       {"far_rays", options.pair.far_rays},
       {"max_skipped_bound", max_skipped},
+      {"capped_rows", c.capped_rows},
+      {"max_capped", max_capped},
       {"partial_visibility", options.pair.partial == PartialVisibility::kExactRegion ? "exact_region" : "sampled"},
       {"fraction_error_target", options.pair.fraction_error},
       {"row_error_target", options.row_error},
