@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -15,6 +16,7 @@
 #include "hrad/analysis/error_metrics.h"
 #include "hrad/analysis/power_law_fit.h"
 #include "hrad/core/error.h"
+#include "hrad/io/obj_reader.h"
 #include "hrad/solvers/solve.h"
 #include "solver_test_scenes.h"
 
@@ -92,6 +94,41 @@ TEST(LinearBasis, MomentsOfALinearFieldAreItsIntegralsAgainstTheBasis) {
       }
     EXPECT_NEAR(m[static_cast<std::size_t>(i)][0], exact, 1e-12) << "moment " << i;
   }
+}
+
+TEST(LinearBasis, BernsteinWeightingAveragesTheSourcesRadiosity) {
+  // A source's kernel towards a receiver beside one of its edges: 1 at the edge's three points, 0
+  // elsewhere. The source's radiosity is 0 on the half at that edge and 1 on the other: its exact
+  // moments (integrals of the biquadratic Lagrange functions against it, as a coarse node's are when
+  // pulled up from its children) by a fine midpoint rule. The Bernstein weighting sends the
+  // average of B under g = (1 - v)^2: (1/24) / (1/3) = 0.125; the interpolant of the kernel,
+  // 2 (v - 1/2) (v - 1), is negative over the bright half and would send -0.25.
+  const std::vector<Vec3> square = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const SimpsonPoints s = simpson_points(square);
+  auto lagrange = [](int node, double t) {
+    return node == 0 ? 2 * (t - 0.5) * (t - 1) : node == 1 ? -4 * t * (t - 1) : 2 * t * (t - 0.5);
+  };
+  std::array<double, 9> f{}, m{};
+  constexpr int kCells = 4000;
+  for (int i = 0; i < 9; ++i) {
+    const int a = static_cast<int>(2 * kSimpsonQuadUv[i][0]), b = static_cast<int>(2 * kSimpsonQuadUv[i][1]);
+    f[static_cast<std::size_t>(i)] = b == 0 ? 1.0 : 0.0;
+    double along = 0.0, across = 0.0;
+    for (int k = 0; k < kCells; ++k) {
+      const double t = (k + 0.5) / kCells;
+      along += lagrange(a, t) / kCells;
+      if (t > 0.5) across += lagrange(b, t) / kCells;
+    }
+    m[static_cast<std::size_t>(i)] = along * across;
+  }
+  auto sent = [&](const std::array<double, 9>& g) {
+    const std::array<double, 9> basis = basis_integrals(s, 1.0);
+    double weighted = 0.0, integral = 0.0;
+    for (std::size_t i = 0; i < 9; ++i) weighted += g[i] * m[i], integral += g[i] * basis[i];
+    return weighted / integral;
+  };
+  EXPECT_NEAR(sent(bernstein_weighting(f, 9)), 0.125, 1e-6);
+  EXPECT_NEAR(sent(f), -0.25, 1e-6);  // the control: the interpolating weights overshoot
 }
 
 // --- Options -------------------------------------------------------------------------------------
@@ -225,6 +262,43 @@ TEST(LinearBasis, HierarchicalLeafPushReproducesAClosedRoomAtEveryCorner) {
     EXPECT_LT(worst_corner(sol), 1e-6) << "t-junctions " << t_junctions;
     EXPECT_LT(energy_balance(s, sol).closed_scene_residual[0], 1e-6) << "t-junctions " << t_junctions;
   }
+}
+
+TEST(LinearBasis, SubstructuringWithCoarseShootingPatchesSendsAverages) {
+  // Substructuring's shooting patches (total area / 24 on the Cornell box) are much larger than the
+  // elements beside them (total / 1024), so a patch's kernel towards an element at its edge peaks
+  // there: the patch must send an average of its radiosity (field_links.h's source weights in the
+  // Bernstein form). Weights that overshoot sent values outside the patch's range, even negative,
+  // and the elements beside the patch took them: corners whose reflected light was more negative
+  // (-24) than the brightest radiosity in the scene is bright (21), and an iteration that
+  // contracted by 0.84 a step (79 iterations) where the reflectances (rho <= 0.75) allow far less.
+  // What remains below 0 is the L2 projection's own undershoot where a shadow edge crosses an
+  // element (at most about twice the element's mean reflected light, a small fraction of the
+  // brightest radiosity): every corner's reflected light must be above -1% of the brightest
+  // radiosity, and the iteration must converge in fewer than 40 steps.
+  const Scene s = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  SolveOptions o;
+  o.method = Method::kSubstructure;
+  o.basis = Basis::kLinear;
+  o.max_area = s.total_area() / 1024.0;
+  o.patch_area = s.total_area() / 24.0;
+  Solution sol;
+  const SolveSummary sum = solve(s, o, &sol);
+  ASSERT_EQ(sum.termination, Termination::kConverged) << sum.message;
+  ASSERT_EQ(sol.face_field.size(), sol.faces.size());
+  double brightest = 0.0, lowest = 0.0;
+  for (std::size_t f = 0; f < sol.faces.size(); ++f) {
+    const Rgb& e =
+        s.materials[static_cast<std::size_t>(s.patches[static_cast<std::size_t>(sol.face_patch[f])].material)].emission;
+    const ElementField& field = sol.face_field[f];
+    for (int k = 0; k < field.corners; ++k) {
+      const Rgb& b = field.radiosity[static_cast<std::size_t>(k)];
+      brightest = std::max(brightest, b.maxCoeff());
+      lowest = std::min(lowest, (b - e).minCoeff());
+    }
+  }
+  EXPECT_GE(lowest, -0.01 * brightest) << brightest;
+  EXPECT_LT(sum.iterations, 40) << sum.message;
 }
 
 // --- A small light above a floor -----------------------------------------------------------------

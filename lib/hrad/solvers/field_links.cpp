@@ -31,19 +31,19 @@ void visible_fractions(const FormFactorEvaluator& ev, const ElementNode& r, cons
   }
 }
 
-// The source's weights over its moments: its points' factors over their integral against its basis
-// (basis_integrals()), so a uniform radiosity sends itself. A source none of whose points sees the
-// receiver sends its mean.
+// The source's weights over its moments: its points' factors in the Bernstein form (a positive
+// average of its radiosity, linear_basis.h bernstein_weighting()) over their integral against its
+// basis (basis_integrals()), so a uniform radiosity sends itself. A source none of whose points sees
+// the receiver sends its mean.
 std::array<double, 9> source_weights(const PointFactors& source, double area) {
   const int functions = basis_functions(source.points);
   const std::array<double, 9> basis = basis_integrals(source.points, area);
+  const std::array<double, 9> g = bernstein_weighting(source.factor, source.points.count);
   double integral = 0.0;
-  for (int m = 0; m < functions; ++m)
-    integral += basis[static_cast<std::size_t>(m)] * source.factor[static_cast<std::size_t>(m)];
+  for (int m = 0; m < functions; ++m) integral += basis[static_cast<std::size_t>(m)] * g[static_cast<std::size_t>(m)];
   std::array<double, 9> w{};
   for (int m = 0; m < functions; ++m)
-    w[static_cast<std::size_t>(m)] =
-        integral > 0.0 ? source.factor[static_cast<std::size_t>(m)] / integral : 1.0 / area;
+    w[static_cast<std::size_t>(m)] = integral > 0.0 ? g[static_cast<std::size_t>(m)] / integral : 1.0 / area;
   return w;
 }
 

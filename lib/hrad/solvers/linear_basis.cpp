@@ -86,4 +86,22 @@ std::array<double, 9> basis_integrals(const SimpsonPoints& points, double area) 
   return b;
 }
 
+std::array<double, 9> bernstein_weighting(const std::array<double, 9>& f, int count) {
+  std::array<double, 9> g = f;
+  const int corners = count == 9 ? 4 : 3;
+  for (int e = 0; e < corners; ++e)
+    g[static_cast<std::size_t>(corners + e)] =
+        0.25 * (f[static_cast<std::size_t>(e)] + f[static_cast<std::size_t>((e + 1) % corners)]) +
+        0.5 * f[static_cast<std::size_t>(corners + e)];
+  if (count == 9) {
+    double centre = 0.25 * f[8];
+    for (int k = 0; k < 4; ++k)
+      centre += f[static_cast<std::size_t>(k)] / 16.0 + f[static_cast<std::size_t>(4 + k)] / 8.0;
+    g[8] = centre;
+  } else {
+    g[6] = 0.0;  // a triangle's 7th point is not a basis function
+  }
+  return g;
+}
+
 }  // namespace hrad

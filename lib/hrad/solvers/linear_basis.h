@@ -43,6 +43,17 @@ std::array<double, 9> basis_integrals(const SimpsonPoints& points, double area);
 /// The number of basis functions of PointValues fields (9 on a quad, 6 on a triangle).
 inline int basis_functions(const SimpsonPoints& points) { return points.count == 9 ? 9 : 6; }
 
+/// A source's weighting of its own radiosity, sum_i G_i m_i over its moments = the integral of g B,
+/// from point samples f >= 0 of the kernel towards a receiver (at the simpson_points(); `count` 9 or
+/// 7): G are the values at the points of the quadratic (biquadratic) Bernstein polynomial whose
+/// control values are f (vertices keep f; an edge midpoint takes (f_a + 2 f_m + f_b) / 4; a quad's
+/// centre the tensor product of that). That g is >= 0 everywhere, so the weighting is an average of B
+/// and cannot overshoot: the interpolant through f instead dips below 0 between the points of a
+/// kernel peaked near one edge (a large source beside a small receiver) and then sends a radiosity
+/// far outside the source's range, even negative (Farin 2002, "Curves and surfaces for CAGD", ch. 3:
+/// the Bernstein form's positivity and variation diminishing).
+std::array<double, 9> bernstein_weighting(const std::array<double, 9>& f, int count);
+
 /// Corners of an element with `vertex_count` vertices (3 or 4): the linear basis's functions.
 inline int linear_corners(int vertex_count) { return vertex_count == 4 ? 4 : 3; }
 
