@@ -5,8 +5,9 @@
 // a contour kernel with one 3 x 3 Gauss rule per strip put the points of the strips beside the end
 // wall metres from where its light arrives (3% of the power lost at L = 30 W, half at L = 100 W); the
 // rule now takes near-square cells along a strip, up to kMaxReceiverCells of them
-// (receiver_gauss_factor.h), which bounds the aspect it resolves: beyond about 8 x 4 : 1 the loss
-// grows again (1.4e-3 at 0.75 x 1.25 x 60).
+// (receiver_gauss_factor.h), which bounds the aspect it resolves: with 8 cells the loss grew again
+// beyond about 8 x 4 : 1 (1.4e-3 at 0.75 x 1.25 x 60, 5.3e-3 at 1 x 1 x 100); with 1024, strips up to
+// about 1400 : 1 keep cells of aspect 2 or less, at a cost linear in the aspect.
 #include <gtest/gtest.h>
 
 #include "../solvers/solver_test_scenes.h"
@@ -35,13 +36,14 @@ Scene corridor(double w, double h, double l, double rho, double e, bool open = f
   return s;
 }
 
-// Guarantee: closed corridors 20 and 30 times as long as they are wide absorb what their end wall
+// Guarantee: closed corridors 20 to 100 times as long as they are wide absorb what their end wall
 // emits within 1e-3, for the full matrix and substructuring at the defaults (contour kernel).
 TEST(LongRooms, ClosedCorridorsAbsorbWhatTheirEndWallEmits) {
   struct Case {
     double w, h, l, rho;
   };
-  for (const Case& c : {Case{1.0, 1.0, 30.0, 0.5}, Case{1.25, 0.75, 20.0, 0.7}}) {
+  for (const Case& c : {Case{1.0, 1.0, 30.0, 0.5}, Case{1.25, 0.75, 20.0, 0.7}, Case{0.75, 1.25, 60.0, 0.5},
+                        Case{1.0, 1.0, 100.0, 0.6}}) {
     const Scene s = corridor(c.w, c.h, c.l, c.rho, 1.0);
     for (Method m : {Method::kFull, Method::kSubstructure}) {
       SolveOptions o;

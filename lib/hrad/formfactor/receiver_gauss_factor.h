@@ -11,8 +11,11 @@
 
 namespace hrad {
 
-/// Most cells along one side of an elongated quad in receiver_gauss_points().
-inline constexpr long kMaxReceiverCells = 8;
+/// Most cells along one side of an elongated quad in receiver_gauss_points(): strips up to about
+/// 1400 : 1 keep cells of aspect 2 or less, at a cost linear in the aspect. Fewer cells put the
+/// points of a corridor's wall strips far from where the end wall's light arrives, and closed
+/// corridors then lose power (tests/hard/long_room_test.cpp).
+inline constexpr long kMaxReceiverCells = 1024;
 
 /// The receiver's points: the 3 x 3 product Gauss-Legendre rule on a quad's bilinear map (degree 5
 /// in (u, v)), on each of k cells of aspect below ~2 along an elongated quad (k its sides' length
