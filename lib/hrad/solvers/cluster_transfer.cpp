@@ -114,7 +114,7 @@ double ClusterTransfer::facing_weight(const Patch& patch, const Vec3& at, NodeRe
 }
 
 double ClusterTransfer::link_weights(NodeRef r, NodeRef other_end, const ShadedPatches* shaded,
-                                     std::vector<float>* per_area) const {
+                                     std::vector<float>* per_area, LinkWeights kind) const {
   const NodeShape other = shape(other_end);
   double total = 0.0;
   for (int k = 0, n = patch_count(r); k < n; ++k) {
@@ -123,7 +123,15 @@ double ClusterTransfer::link_weights(NodeRef r, NodeRef other_end, const ShadedP
     const double area = is_cluster(r) ? s.area : h_.node(r).area;
     const Vec3 at =
         is_cluster(r) ? centroids_[static_cast<std::size_t>(patch)] : polygon_centroid(h_.node(r).polygon());
-    const float q = static_cast<float>(facing_weight(s, at, other_end, other) * visible_share(shaded, patch));
+    float q = 0.0f;
+    if (kind == LinkWeights::kSends) {
+      if (shaded != nullptr) {
+        const auto it = std::lower_bound(shaded->begin(), shaded->end(), ShadedPatch{patch, 0.0f, 0.0f});
+        if (it != shaded->end() && it->patch == patch) q = it->factor;
+      }
+    } else {
+      q = static_cast<float>(facing_weight(s, at, other_end, other) * visible_share(shaded, patch));
+    }
     per_area->push_back(q);
     total += area * static_cast<double>(q);
   }

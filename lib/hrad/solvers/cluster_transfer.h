@@ -22,6 +22,9 @@
 
 namespace hrad {
 
+/// Which of a cluster link end's weights (ClusterTransfer::link_weights()).
+enum class LinkWeights { kGets, kSends };
+
 struct NodeShape {
   Vec3 centre = Vec3::Zero();
   double radius = 0.0;  ///< bounding sphere about centre
@@ -54,19 +57,21 @@ class ClusterTransfer {
   FormFactorEstimate far_field(NodeRef p, const NodeShape& sp, NodeRef q, const NodeShape& sq) const;
   /// Exact projected area of r's surfaces towards the unit direction d (facing_cosine()).
   double projected_area(NodeRef r, const Vec3& d) const;
-  /// How a cluster link shares what it carries among the patches of its end r (hsa_links.h): per
-  /// patch j of r (in tree order), appended to `per_area`, q_j = F(dA at j's centroid -> the other
-  /// end's bounding sphere) (point_to_sphere()) times the other end's projected area towards j
-  /// over its largest (its axis sums, Cluster::axis_plus: exact for axis-aligned contents) times
-  /// the part of the other end j sees (visible_share() of `shaded`). Patch j takes A_j q_j / W of
-  /// the link, W = sum A_j q_j, which is returned. Unlike projected areas towards the other end's
-  /// centre, this follows each patch's own position, the other end's extent and which way the
-  /// other end faces: a ceiling lamp level with a far cluster's centre still sees its lower half.
-  double link_weights(NodeRef r, NodeRef other, const ShadedPatches* shaded, std::vector<float>* per_area) const;
+  /// A cluster link's weights at its end r (hsa_links.h), per patch j of r (in tree order),
+  /// appended to `per_area`; returns W = sum A_j q_j. kGets: q_j = F(dA at j's centroid -> the other
+  /// end's bounding sphere) (point_to_sphere()) times the other end's projected area towards j over
+  /// its largest (its axis sums, Cluster::axis_plus: exact for axis-aligned contents) times the part
+  /// of the other end j sees (ShadedPatch::visible in `shaded`); patch j gets A_j q_j / W of what the
+  /// link brings. Unlike projected areas towards the other end's centre, this follows each patch's
+  /// own position, the other end's extent and which way the other end faces: a ceiling lamp level
+  /// with a far cluster's centre still sees its lower half. kSends: q_j = j's sampled factor to the
+  /// other end (ShadedPatch::factor; 0 when not listed), what j sends per unit radiosity over A_j.
+  double link_weights(NodeRef r, NodeRef other, const ShadedPatches* shaded, std::vector<float>* per_area,
+                      LinkWeights kind = LinkWeights::kGets) const;
   /// Removes from `shaded` the patches of r whose q_j above is 0 whatever they see (facing wholly
   /// away from the other end's bounding sphere): they take no part in the link anyway.
   void drop_idle(NodeRef r, NodeRef other, ShadedPatches* shaded) const;
-  /// The largest share per unit area that a link gives a patch of r: the largest q_j over W above
+  /// The largest share per unit area that a link gives a patch of r: the largest q_j over W (kGets)
   /// (+infinity when W is 0). Times the link's exchange A_r F, the largest factor a patch of r
   /// receives through it.
   double largest_share(NodeRef r, NodeRef other, const ShadedPatches* shaded) const;

@@ -257,7 +257,8 @@ PairClass FormFactorEvaluator::classify(std::span<const Vec3> a, int patch_a, st
 }
 
 FormFactorEstimate FormFactorEvaluator::sampled(const SurfaceSampler& p, const SurfaceSampler& q, int samples,
-                                                std::uint64_t seed) const {
+                                                std::uint64_t seed, std::vector<int>* seen_p,
+                                                std::vector<int>* seen_q) const {
   evaluations_.fetch_add(1, std::memory_order_relaxed);
   FormFactorEstimate e;
   const int n = std::max(1, samples);
@@ -290,8 +291,11 @@ FormFactorEstimate FormFactorEvaluator::sampled(const SurfaceSampler& p, const S
       weight += k;
       if (sight == Sight::kBlocked)
         kv = 0.0;
-      else
+      else {
         ++visible, visible_weight += k;
+        if (seen_p != nullptr) seen_p->push_back(px);
+        if (seen_q != nullptr) seen_q->push_back(py);
+      }
     }
     sum += kv;
     sum2 += kv * kv;
@@ -328,8 +332,8 @@ ShadedPatches FormFactorEvaluator::shaded_surfaces(const SurfaceSampler& from, c
       weight += kernel;
       if (!effects_.visibility || visibility_->sight(x, px, y, py) == Sight::kVisible) seen += kernel;
     }
-    if (!(weight > 0.0) || seen < weight)
-      shaded.push_back({px, weight > 0.0 ? static_cast<float>(seen / weight) : 0.0f});
+    shaded.push_back({px, weight > 0.0 ? static_cast<float>(seen / weight) : 0.0f,
+                      static_cast<float>(to.area() * seen / (std::numbers::pi * rays))});
   }
   std::sort(shaded.begin(), shaded.end());
   return shaded;

@@ -70,12 +70,14 @@ class SurfaceSampler {
   virtual int sample_patch(int k, double u, double v, Vec3* point) const = 0;
 };
 
-/// A patch at one end of a cluster link that sees the other end only in part: the kernel-weighted
-/// fraction of the other end it sees (0: nothing). Lists of them are sorted by patch; a patch not
-/// listed sees all of the other end.
+/// A patch at one end of a cluster link, as seen from it along rays to the other end: the
+/// kernel-weighted fraction of the other end it sees (0: nothing) and its sampled factor to the
+/// other end, visibility included (FormFactorEvaluator::shaded_surfaces()). Lists of them are sorted
+/// by patch; a patch not listed sees all of the other end and sends nothing through the link.
 struct ShadedPatch {
   int patch = -1;
   float visible = 0.0f;
+  float factor = 0.0f;
   bool operator<(const ShadedPatch& o) const { return patch < o.patch; }
 };
 using ShadedPatches = std::vector<ShadedPatch>;
@@ -164,14 +166,18 @@ class FormFactorEvaluator {
   /// on each side): F(p -> q) = A_q mean(cos cos V / (pi r^2)), the visibility V by rays through the
   /// whole scene. Unbiased, reciprocal by construction; `error` is its standard error. value
   /// F(p -> q), reverse F(q -> p), visibility the kernel-weighted visible fraction.
-  FormFactorEstimate sampled(const SurfaceSampler& p, const SurfaceSampler& q, int samples, std::uint64_t seed) const;
+  /// `seen_p` and `seen_q`, when given, receive the patches of each side that some visible sample
+  /// pair joined (in sample order, with repeats).
+  FormFactorEstimate sampled(const SurfaceSampler& p, const SurfaceSampler& q, int samples, std::uint64_t seed,
+                             std::vector<int>* seen_p = nullptr, std::vector<int>* seen_q = nullptr) const;
 
-  /// The patches of `from` that do not see all of `to`: along `rays` rays from points uniform on
-  /// the patch to points uniform by area on `to`, visibility decided exactly (Visibility::sight()),
-  /// the kernel-weighted visible fraction sum k V / sum k (k the point pair kernel; 0 when no ray
-  /// carries weight), listed when below 1, sorted. A patch behind a closed surface never sees
-  /// through it, whatever the rays: a cluster link must give it nothing; a patch half hidden by
-  /// furniture inside its own cluster must get half of an unobstructed patch's share (hsa_links.h).
+  /// Every patch of `from`, along `rays` rays from points uniform on the patch to points uniform by
+  /// area on `to`, visibility decided exactly (Visibility::sight()): the kernel-weighted visible
+  /// fraction sum k V / sum k (k the point pair kernel; 0 when no ray carries weight) and the factor
+  /// A_to sum k V / (pi rays), an unbiased estimate of F(patch -> to); sorted. A patch behind a
+  /// closed surface never sees through it, whatever the rays: a cluster link must give it nothing;
+  /// a patch half hidden by furniture inside its own cluster must get half of an unobstructed
+  /// patch's share (hsa_links.h).
   ShadedPatches shaded_surfaces(const SurfaceSampler& from, const SurfaceSampler& to, int rays,
                                 std::uint64_t seed) const;
 

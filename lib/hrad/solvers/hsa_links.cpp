@@ -57,27 +57,37 @@ HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, co
       if (l.f_qp > 0.0) links_[cursor[dq]++] = directed(dp, l.shape_q, l.source_p, l.f_qp);
       continue;
     }
-    // Each cluster end's weights, once for both directions.
-    auto end_weights = [&](NodeRef end, NodeRef other, const ShadedPatches* shaded, std::uint64_t* offset) {
-      *offset = weights_.size();
-      return is_cluster(end) ? geometry.link_weights(end, other, shaded, &weights_) : 0.0;
+    // Each cluster end's two weights, once for both directions (hsa_links.h ClusterLink).
+    struct EndWeights {
+      std::uint64_t gets = 0, sends = 0;
+      double w_gets = 0.0;
     };
-    std::uint64_t q_p = 0, q_q = 0;
-    const double w_p = end_weights(l.p, l.q, l.hidden_p.get(), &q_p);
-    const double w_q = end_weights(l.q, l.p, l.hidden_q.get(), &q_q);
-    auto directed = [&](NodeRef receiver, NodeRef source, double f, double w_receiver, std::uint64_t q_receiver,
-                        double w_source, std::uint64_t q_source) {
-      ClusterLink c{static_cast<std::int32_t>(dense(source)), static_cast<float>(f), 0.0f, q_receiver, q_source};
+    auto end_weights = [&](NodeRef end, NodeRef other, const ShadedPatches* shaded) {
+      EndWeights e;
+      if (!is_cluster(end)) return e;
+      e.gets = weights_.size();
+      e.w_gets = geometry.link_weights(end, other, shaded, &weights_, LinkWeights::kGets);
+      e.sends = weights_.size();
+      const double w_sends = geometry.link_weights(end, other, shaded, &weights_, LinkWeights::kSends);
+      // An end none of whose patches faces the other end's sphere gets by what its patches send.
+      if (!(e.w_gets > 0.0)) e.gets = e.sends, e.w_gets = w_sends;
+      return e;
+    };
+    const EndWeights end_p = end_weights(l.p, l.q, l.hidden_p.get());
+    const EndWeights end_q = end_weights(l.q, l.p, l.hidden_q.get());
+    auto directed = [&](NodeRef receiver, NodeRef source, double f, const EndWeights& r, const EndWeights& s) {
+      const double area = geometry.shape(receiver).area;
+      const double sent = is_cluster(source) ? 1.0 : f * area;  // per unit of shown()
+      ClusterLink c{static_cast<std::int32_t>(dense(source)), static_cast<float>(sent / area), r.gets, s.sends};
       if (is_cluster(receiver)) {
-        c.factor = w_receiver > 0.0 ? static_cast<float>(f * geometry.shape(receiver).area / w_receiver) : 0.0f;
+        c.factor = r.w_gets > 0.0 ? static_cast<float>(sent / r.w_gets) : 0.0f;
         cluster_receivers_ = true;
       }
-      if (is_cluster(source)) c.source_scale = w_source > 0.0 ? static_cast<float>(1.0 / w_source) : 0.0f;
       cluster_terms_ += 1 + patches(receiver) + patches(source);
       return c;
     };
-    if (l.f_pq > 0.0) cluster_links_[cluster_cursor[dp]++] = directed(l.p, l.q, l.f_pq, w_p, q_p, w_q, q_q);
-    if (l.f_qp > 0.0) cluster_links_[cluster_cursor[dq]++] = directed(l.q, l.p, l.f_qp, w_q, q_q, w_p, q_p);
+    if (l.f_pq > 0.0) cluster_links_[cluster_cursor[dp]++] = directed(l.p, l.q, l.f_pq, end_p, end_q);
+    if (l.f_qp > 0.0) cluster_links_[cluster_cursor[dq]++] = directed(l.q, l.p, l.f_qp, end_q, end_p);
   }
   if (cluster_receivers_) carried_.assign(cluster_links_.size(), Rgb::Zero());
 }
@@ -92,7 +102,7 @@ Rgb HsaLinks::shown(const NodeField& field, std::uint64_t k) const {
   const ClusterLink& l = cluster_links_[k];
   const std::size_t source = static_cast<std::size_t>(l.source);
   if (source < elements_) return field.radiosity[source];
-  // A cluster shows the mean of its patches' radiosity by their weights towards the receiver.
+  // A cluster sends sum_j A_j q_j B_j: each patch by its own factor to the receiver.
   const float* q = weights_.data() + l.source_q;
   Rgb sum = Rgb::Zero();
   for (const int patch : tree_->patches(static_cast<int>(source - elements_))) {
@@ -101,7 +111,7 @@ Rgb HsaLinks::shown(const NodeField& field, std::uint64_t k) const {
       sum += (scene_.patches[static_cast<std::size_t>(patch)].area * w) *
              field.radiosity[static_cast<std::size_t>(h_.root(patch))];
   }
-  return static_cast<double>(l.source_scale) * sum;
+  return sum;
 }
 
 void HsaLinks::gather(NodeField& field) const {

@@ -20,10 +20,10 @@ class HsaLinks final : public LinkOperator {
   /// Stores both directions of every link in `links` that carries a factor, grouped by receiver:
   /// 76 bytes per link between elements (32-bit source, the factor's shape over the receiver and
   /// the source points' weights, Link::shape_p and source_q, as 9 floats each: 6e-8 relative, far
-  /// below any tolerance), 32 per link with a cluster end (32-bit source, float factor, the inverse
-  /// of the source's weight, the offsets of both ends' weights) and 4 bytes per patch of each
-  /// cluster end for its weight, shared by both directions. `tree` may be null when no link has a
-  /// cluster end.
+  /// below any tolerance), 24 per link with a cluster end (32-bit source, float factor, the offsets
+  /// of both ends' weights) and 8 bytes per patch of each cluster end for its two weights (what it
+  /// gets, what it sends), shared by both directions. `tree` may be null when no link has a cluster
+  /// end.
   HsaLinks(const std::vector<Link>& links, const ElementHierarchy& hierarchy, const ClusterTree* tree,
            const ClusterTransfer& geometry);
 
@@ -42,26 +42,29 @@ class HsaLinks final : public LinkOperator {
     std::array<float, 9> factor;  ///< the factor at the receiver's points (link_operator.h PointValues)
     std::array<float, 9> weight;  ///< the source's shape over the exchange: sum_i weight_i m_i is the radiosity sent
   };
-  /// A link with a cluster end. Each cluster end shares the link among its patches by weights A_j
-  /// q_j (ClusterTransfer::link_weights(): each patch's factor to the other end's bounding sphere
-  /// times the part of the other end it sees; Sillion 1995's oriented clusters, per patch): a
-  /// cluster source shows the mean radiosity of its patches by these weights, a cluster receiver
-  /// gives patch j the share A_j q_j / W of the power A_R F B it receives. The two directions of a
-  /// link use the same weights of each end, so the link is reciprocal patch by patch, and the shares
-  /// sum to what the link carries.
+  /// A link with a cluster end. A cluster end has two weights per patch j (ClusterTransfer::
+  /// link_weights()). What it sends: q_j = F(j -> the other end), sampled by rays of its own
+  /// (FormFactorEvaluator::shaded_surfaces(), independent of the samples that decided the link), so
+  /// that the link carries sum_j A_j q_j B_j, an unbiased estimate of the power its patches send to
+  /// the other end whatever their radiosities (normalising the q_j to the link's factor would make
+  /// each patch's part a ratio of estimates, biased against the patches whose rays vary most). What
+  /// it gets: each patch's factor to the other end's bounding sphere times the part of the other end
+  /// it sees (Sillion 1995's oriented clusters, per patch), normalised: patch j gets A_j q_j / W of
+  /// the power the link brings, W = sum A_j q_j, so nothing the link carries is lost. An element
+  /// source sends A_R F B through its factor F.
   struct ClusterLink {
     std::int32_t source;
-    /// F for an element receiver; A_R F / W_R for a cluster receiver, whose patch j then gets q_j
-    /// times what the source shows.
+    /// Per unit of what the source sends (sum_j A_j q_j B_j of a cluster source, B of an element
+    /// source with A_R F folded in): 1 / A_R for an element receiver; 1 / W_R for a cluster
+    /// receiver, whose patch j then gets q_j times it.
     float factor;
-    float source_scale;            ///< 1 / W_S of a cluster source
-    std::uint64_t receiver_q = 0;  ///< a cluster receiver's q_j: weights_[receiver_q + j]
-    std::uint64_t source_q = 0;    ///< a cluster source's q_j: weights_[source_q + j]
+    std::uint64_t receiver_q = 0;  ///< a cluster receiver's q_j (what it gets): weights_[receiver_q + j]
+    std::uint64_t source_q = 0;    ///< a cluster source's q_j (what it sends): weights_[source_q + j]
   };
   static_assert(sizeof(DirectedLink) == 76);
-  static_assert(sizeof(ClusterLink) == 32);
+  static_assert(sizeof(ClusterLink) == 24);
 
-  /// What the source of cluster link k shows towards its receiver.
+  /// What the source of cluster link k sends towards its receiver, per unit of the factor.
   Rgb shown(const NodeField& field, std::uint64_t k) const;
 
   std::size_t elements_ = 0;
@@ -73,7 +76,7 @@ class HsaLinks final : public LinkOperator {
   std::vector<ClusterLink> cluster_links_;
   std::uint64_t cluster_terms_ = 0;
   bool cluster_receivers_ = false;  ///< some link has a cluster receiver
-  std::vector<float> weights_;      ///< per cluster end of a link, its patches' q_j in tree order
+  std::vector<float> weights_;      ///< per cluster end of a link, its patches' two q_j in tree order
   /// Per patch: its index in the patch list of each cluster above it is position_[p] - begin.
   std::vector<int> position_;
   mutable std::vector<Rgb> carried_;  ///< per cluster link of a cluster receiver: factor times what the source shows

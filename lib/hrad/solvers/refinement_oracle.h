@@ -48,10 +48,11 @@ struct Candidate {
   bool partial = false;  ///< linked with a sampled visible fraction (the shaft test found occluders; a cluster link)
   /// Between elements: the linked visible fraction (f_pq = unoccluded F(p -> q) times it; 1 unless partial).
   double fraction = 1.0;
-  /// A link with a cluster end: the patches of a cluster p (q) that face the other end but see only
-  /// part of it or nothing (FormFactorEvaluator::shaded_surfaces(); null when none). Each gets and
-  /// shows through the link in proportion to its projected area times the fraction it sees
-  /// (hsa_links.h): a patch that sees nothing of the other end takes no part.
+  /// A link with a cluster end: the patches of a cluster p (q) that face the other end, with the
+  /// part of the other end each sees and its sampled factor to it (FormFactorEvaluator::
+  /// shaded_surfaces(); null when none). A patch gets through the link in proportion to its factor
+  /// to the other end's sphere times the part it sees, and sends by its own factor (hsa_links.h):
+  /// a patch that sees nothing of the other end takes no part.
   std::shared_ptr<const ShadedPatches> hidden_p = nullptr, hidden_q = nullptr;
   /// A partly visible link's error from giving each side the link's visible fraction, as the
   /// weighted test counts it (1 = the tolerance): what its receiver gathers errs by this much where
