@@ -7,6 +7,7 @@
 //   emitters   the faces whose material emits
 //   area       total area, in the scene's unit squared
 //   materials  {name: {reflectance: [r,g,b], emission: [r,g,b]}}
+//   emission_units  {unit: "lm/m2" | "W/m2", declared_at: "file:line"}, when the scene declares it
 // Warnings go to stderr: skipped or split faces, faces without a material, and what would make the
 // answer look wrong (no emitter, lights exported without emission, normals facing out of the room,
 // no light reaching any surface: core/scene_checks.h).
@@ -42,6 +43,9 @@ void add_info_command(CLI::App& app) {
     }
     std::cout << fmt::format("{}: {} input faces, {} patches, {} emitters, area {:.6g}\n", scene.path,
                              scene.faces.size(), scene.patches.size(), scene.emitter_count(), scene.total_area());
+    if (scene.emission_units)
+      std::cout << fmt::format("  emission in {} (declared at {})\n", to_string(scene.emission_units->units),
+                               scene.emission_units->where);
     for (const Material& m : scene.materials)
       std::cout << fmt::format("  material {:<12} reflectance {:.4f} {:.4f} {:.4f}  emission {:.4g} {:.4g} {:.4g}\n",
                                m.name, m.reflectance[0], m.reflectance[1], m.reflectance[2], m.emission[0],

@@ -35,15 +35,17 @@
 //                          --exact-visibility), else all
 //   --threads N            worker threads (default: all cores); the values do not depend on it
 //   --seed S               seed of the visibility samples (default 1)
-//   --emission-units U     declare the unit of the scene's emission (MTL Ke): lm/m2 (luminous
-//                          exitance) or W/m2 (radiant exitance of white light); the results then
-//                          gain a column illuminance_lux (lib/hrad/gather/photometry.h: Radiance's
-//                          luminance weights, and 179 lm/W for W/m2)
+//   --emission-units U     the unit of the scene's emission (MTL Ke): lm/m2 (luminous exitance) or
+//                          W/m2 (radiant exitance of white light); the results then gain a column
+//                          illuminance_lux (lib/hrad/gather/photometry.h: Radiance's luminance
+//                          weights, and 179 lm/W for W/m2). Default: the unit the scene file declares
+//                          ("# hrad: emission-units lm/m2", README "Scene format"); the option overrides
+//                          a declaration, with a warning when they differ
 //   --isolux IMAGE.png     with --grid: a false-colour isolux plot of the grid as seen from the side
 //                          its points face (u to the right; v up, or down where u x v points the
 //                          other way, as for y; lib/hrad/render/isolux_image.h), bands between
 //                          round levels, isolines and
-//                          a labelled colour bar; in lux with --emission-units, otherwise the
+//                          a labelled colour bar; in lux with a unit (declared or the option), otherwise the
 //                          luminance-weighted irradiance in the scene's units
 //   --quiet                no progress on stderr
 // A summary (points, seconds, work per point; with --grid the least, mean and greatest value and
@@ -141,7 +143,7 @@ void add_probe_command(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--seed", args->seed, "Seed of the visibility samples (default 1)");
   cmd->add_option("--emission-units", args->emission_units,
-                  "Unit of the scene's emission: lm/m2 or W/m2 (adds illuminance_lux)");
+                  "Unit of the scene's emission: lm/m2 or W/m2 (adds illuminance_lux; default: the scene's declaration)");
   cmd->add_option("--isolux", args->isolux, "With --grid: write a false-colour isolux plot (PNG) of the grid");
   cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
   cmd->callback([args, cmd] {
@@ -186,6 +188,15 @@ void add_probe_command(CLI::App& app) {
     std::optional<SolutionLinks> stored;
     const Solution solution = read_solution_ply(args->solution, &stored);
     check_solution_patches(solution, args->solution, scene, args->scene);
+    // The unit: the option's, else the scene's declaration ("# hrad: emission-units lm/m2").
+    if (scene.emission_units) {
+      if (!units)
+        units = scene.emission_units->units;
+      else if (*units != scene.emission_units->units)
+        warnings.push_back(fmt::format("hrad probe: warning: --emission-units {} overrides {} declared at {}",
+                                       to_string(*units), to_string(scene.emission_units->units),
+                                       scene.emission_units->where));
+    }
     for (const std::string& w : warnings) std::cerr << w << "\n";
 
     std::unique_ptr<tbb::global_control> limit;

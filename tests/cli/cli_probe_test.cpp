@@ -164,6 +164,45 @@ TEST(CliProbe, DeclaredUnitsGiveLuxAndAnIsoluxPlot) {
   EXPECT_EQ(read_rows(dir.path("g.csv"))[0].count("illuminance_lux"), 0u);
 }
 
+// A scene that declares its unit ("# hrad: emission-units", here in its MTL) gets lux without the
+// option, the same values as with it; the option overrides a declaration, with a warning.
+TEST(CliProbe, SceneDeclaredUnitsGiveLuxWithoutTheOption) {
+  TempDir dir;
+  write_light_over_floor(dir);
+  const std::string mtl = "newmtl floor\nKd 0 0 0\nKe 0.1 0.1 0.1\nnewmtl light\nKd 0 0 0\nKe 3 6 1.5\n";
+  dir.write("lit.mtl", "# hrad: emission-units W/m2\n" + mtl);
+  ASSERT_EQ(
+      run_hrad("solve " + dir.path("lit.obj") + " --method full --quiet --out " + dir.path("s.ply"), dir).exit_code, 0);
+  const std::string probe =
+      "probe " + dir.path("s.ply") + " --scene " + dir.path("lit.obj") + " --grid y,0,0,0,2,1,4,2 --quiet --out ";
+  const RunResult declared = run_hrad(probe + dir.path("d.csv"), dir);
+  ASSERT_EQ(declared.exit_code, 0) << declared.err;
+  EXPECT_EQ(declared.err.find("warning"), std::string::npos) << declared.err;
+  const RunResult option = run_hrad(probe + dir.path("o.csv") + " --emission-units W/m2", dir);
+  ASSERT_EQ(option.exit_code, 0) << option.err;
+  const RunResult other = run_hrad(probe + dir.path("l.csv") + " --emission-units lm/m2", dir);
+  ASSERT_EQ(other.exit_code, 0) << other.err;
+  EXPECT_NE(other.err.find("--emission-units lm/m2 overrides W/m2 declared at " + dir.path("lit.mtl") + ":1"),
+            std::string::npos)
+      << other.err;
+  const std::vector<Row> d = read_rows(dir.path("d.csv")), o = read_rows(dir.path("o.csv")),
+                         l = read_rows(dir.path("l.csv"));
+  ASSERT_EQ(d.size(), 8u);
+  ASSERT_EQ(o.size(), 8u);
+  ASSERT_EQ(l.size(), 8u);
+  const double weighted = 0.265074126 * kE[0] + 0.670114631 * kE[1] + 0.064811243 * kE[2];
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const double exact = 179.0 * weighted * under_light(num(d[i], "x"), num(d[i], "z"), kC);
+    EXPECT_LT(relative_error(num(d[i], "illuminance_lux"), exact), 1e-9);
+    EXPECT_EQ(d[i].at("illuminance_lux"), o[i].at("illuminance_lux"));
+    EXPECT_LT(relative_error(num(l[i], "illuminance_lux"), exact / 179.0), 1e-9);
+  }
+  // `hrad info` says where the unit was declared.
+  const RunResult info = run_hrad("info " + dir.path("lit.obj"), dir);
+  EXPECT_NE(info.out.find("emission in W/m2 (declared at " + dir.path("lit.mtl") + ":1)"), std::string::npos)
+      << info.out;
+}
+
 // The cube [0, 2]^3 facing inwards, every face emitting 2 with reflectance 0.6; the floor cut in
 // two along x = 1 (faces 0 and 1; then the ceiling 2, the walls z = 0, z = 2, x = 0, x = 2).
 void write_furnace_cube(const TempDir& dir) {

@@ -2,10 +2,12 @@
 // Produced by io/, read by every solver; it knows nothing of files.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "hrad/core/emission_units.h"
 #include "hrad/core/types.h"
 
 namespace hrad {
@@ -45,6 +47,8 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Patch> patches;
   std::vector<InputFace> faces;
+  /// The unit of the materials' emission, when the file declares it (README "Scene format").
+  std::optional<DeclaredEmissionUnits> emission_units;
 
   double total_area() const;
   int emitter_count() const;

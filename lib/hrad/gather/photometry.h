@@ -1,6 +1,7 @@
 // Photometric values from a solution's RGB light, for lighting designers: illuminance in lux.
 // hrad's radiosity, emission and irradiance are in whatever exitance units the scene's emission
-// (MTL Ke) is in; the user declares which (`hrad probe --emission-units`):
+// (MTL Ke) is in; the scene declares which (README "Scene format") or the user does
+// (`hrad probe --emission-units`):
 //   * lm/m2: each emission's luminance-weighted sum (below) is its luminous exitance in lm/m^2, so a
 //     grey Ke of (k, k, k) emits k lm/m^2 and an irradiance's weighted sum is its illuminance in lux;
 //   * W/m2: each channel is radiant exitance in W/m^2 of (equal-energy) white light, and the weighted
@@ -12,19 +13,10 @@
 // The weights sum to 1, so grey light is the same number in every channel and in lux (lm/m2).
 #pragma once
 
-#include <optional>
-#include <string>
-#include <string_view>
-
+#include "hrad/core/emission_units.h"
 #include "hrad/core/types.h"
 
 namespace hrad {
-
-enum class EmissionUnits { lumens_per_m2, watts_per_m2 };
-
-/// "lm/m2" or "W/m2" (also "lm/m^2", "W/m^2"); nullopt for anything else.
-std::optional<EmissionUnits> parse_emission_units(std::string_view text);
-std::string to_string(EmissionUnits units);
 
 /// Lumens per unit of the luminance-weighted value: 1 (lm/m2) or 179 (W/m2, white light).
 double luminous_efficacy(EmissionUnits units);

@@ -16,6 +16,7 @@
 
 #include "hrad/core/error.h"
 #include "hrad/io/input_file.h"
+#include "hrad/io/scene_directives.h"
 #include "hrad/io/scene_faces.h"
 #include "hrad/io/scene_reader.h"
 
@@ -137,6 +138,18 @@ Scene read_gltf_scene(const std::string& path, std::vector<std::string>* warning
   for (const tinygltf::Buffer& b : model.buffers)
     if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0)
       scene.files.push_back((std::filesystem::path(base) / b.uri).string());
+  if (const tinygltf::Value& extras = model.asset.extras; extras.IsObject() && extras.Has("hrad")) {
+    const tinygltf::Value& hrad = extras.Get("hrad");
+    const std::string pointer = fmt::format("{}: /asset/extras/hrad", path);
+    if (!hrad.IsObject()) throw Error(fmt::format("{}: not an object", pointer));
+    for (const std::string& key : hrad.Keys()) {
+      if (key != "emission-units")
+        throw Error(fmt::format("{}: unknown hrad declaration '{}' (known: emission-units)", pointer, key));
+      const tinygltf::Value& value = hrad.Get(key);
+      if (!value.IsString()) throw Error(fmt::format("{}/emission-units: not a string", pointer));
+      detail::declare_emission_units(scene, value.Get<std::string>(), pointer + "/emission-units");
+    }
+  }
   detail::FaceTallies tallies;
   std::map<int, int> material_of;  // glTF material -> scene material
   const auto scene_material = [&](int m, std::size_t face_number) {

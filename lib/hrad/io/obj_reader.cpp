@@ -20,6 +20,7 @@
 #include "hrad/core/error.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/io/input_file.h"
+#include "hrad/io/scene_directives.h"
 #include "hrad/io/scene_faces.h"
 
 // tinyobjloader does the parsing; this file adds what a radiosity scene needs on top of it:
@@ -150,7 +151,14 @@ struct ObjLines {
   std::vector<std::size_t> face;    // line of the k-th `f`
   std::vector<std::vector<std::string>> mtllib;     // the files of the k-th `mtllib` line
   std::map<std::string, std::size_t> first_usemtl;  // material id -> first `usemtl` line
+  std::vector<std::pair<std::size_t, std::string>> comments;  // line and text after '#' of comment lines
 };
+
+/// Records a comment line (text after its '#') for the scene's declarations (scene_directives.h).
+void note_comment(std::vector<std::pair<std::size_t, std::string>>& comments, std::size_t line,
+                  const std::string& text) {
+  comments.emplace_back(line, text.substr(text.find('#') + 1));
+}
 
 /// The files an `mtllib` line names: the whole argument when such a file exists (a name with
 /// spaces, as Blender writes "my scene.mtl"), else its words (several libraries on one line).
@@ -178,6 +186,7 @@ ObjLines scan_obj(const std::string& path, const std::string& bytes, const ObjRe
     const std::size_t line = i + 1;
     progress.advance();
     const std::vector<std::string> t = tokens_of(at.text[i]);
+    if (!t.empty() && t[0][0] == '#') note_comment(at.comments, line, at.text[i]);
     if (t.empty() || t[0][0] == '#') continue;
     any_statement = true;
     const std::string& key = t[0];
@@ -234,6 +243,7 @@ struct MtlLines {
   std::map<std::string, std::size_t> newmtl, kd, ke;
   std::map<std::string, Rgb> kd_value,
       ke_value;  // as this pass read them (tinyobjloader's parser is off by an ulp at times)
+  std::vector<std::pair<std::size_t, std::string>> comments;
 };
 
 MtlLines scan_mtl(const std::string& path, const std::string& bytes, MaterialNames& names) {
@@ -244,6 +254,7 @@ MtlLines scan_mtl(const std::string& path, const std::string& bytes, MaterialNam
   for (std::size_t i = 0; i < at.text.size(); ++i) {
     const std::size_t line = i + 1;
     const std::vector<std::string> t = tokens_of(at.text[i]);
+    if (!t.empty() && t[0][0] == '#') note_comment(at.comments, line, at.text[i]);
     if (t.empty() || t[0][0] == '#') continue;
     if (t[0] == "newmtl") {
       const std::string name = argument_of(at.text[i], "newmtl");
@@ -362,6 +373,9 @@ Scene read_obj_scene(const std::string& path, std::vector<std::string>* warnings
   scene.path = path;
   scene.files.push_back(path);
   scene.files.insert(scene.files.end(), mtl_reader.files.begin(), mtl_reader.files.end());
+  for (const auto& [line, text] : at.comments) detail::apply_scene_comment(scene, path, line, text);
+  for (const MtlLines& mtl : mtl_reader.scans)
+    for (const auto& [line, text] : mtl.comments) detail::apply_scene_comment(scene, mtl.path, line, text);
   std::map<int, int> material_index;  // tinyobj id -> scene id, only materials faces use
   // The file's printed precision: an exporter writing every coordinate with the same d >= 3 decimals
   // (Blender: 6, "%.6f") rounded them to 10^-d; a file printing shortest round-trip numbers (or few

@@ -99,7 +99,10 @@ PlyData parse_ply(const std::string& path, const std::string& bytes) {
       std::string version;
       words >> ply.format >> version;
     } else if (key == "comment" || key == "obj_info") {
-      if (key == "comment") ply.comments.push_back(line.size() > 8 ? line.substr(8) : "");
+      if (key == "comment") {
+        ply.comments.push_back(line.size() > 8 ? line.substr(8) : "");
+        ply.comment_lines.push_back(line_no);
+      }
     } else if (key == "element") {
       PlyElement e;
       long long count = -1;

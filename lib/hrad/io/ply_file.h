@@ -34,6 +34,7 @@ struct PlyElement {
 struct PlyData {
   std::string format;                 ///< "ascii", "binary_little_endian" or "binary_big_endian"
   std::vector<std::string> comments;  ///< text after "comment " in the header, in order
+  std::vector<std::size_t> comment_lines;  ///< the header line of each comment
   std::vector<PlyElement> elements;
   /// The element called `name`, or null.
   const PlyElement* element(const std::string& name) const;

@@ -29,6 +29,8 @@ nlohmann::json scene_summary_json(const Scene& scene) {
   for (const Material& m : scene.materials)
     materials[m.name] = {{"reflectance", rgb_json(m.reflectance)}, {"emission", rgb_json(m.emission)}};
   j["materials"] = std::move(materials);
+  if (scene.emission_units)
+    j["emission_units"] = {{"unit", to_string(scene.emission_units->units)}, {"declared_at", scene.emission_units->where}};
   const auto [lo, hi] = scene.bounds();
   j["bounds"] = {{"min", vec_json(lo)}, {"max", vec_json(hi)}};
   return j;

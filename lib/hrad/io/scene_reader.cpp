@@ -16,6 +16,7 @@
 #include "hrad/core/error.h"
 #include "hrad/io/input_file.h"
 #include "hrad/io/ply_file.h"
+#include "hrad/io/scene_directives.h"
 #include "hrad/io/scene_faces.h"
 
 namespace hrad {
@@ -88,6 +89,8 @@ Scene read_ply_scene(const std::string& path, std::vector<std::string>* warnings
   Scene scene;
   scene.path = path;
   scene.files.push_back(path);
+  for (std::size_t c = 0; c < ply.comments.size(); ++c)
+    detail::apply_scene_comment(scene, path, ply.comment_lines[c], ply.comments[c]);
   detail::FaceTallies tallies;
   for (std::size_t f = 0; f < face->count; ++f) {
     const std::string where = fmt::format("face {}", f);
