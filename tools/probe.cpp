@@ -39,7 +39,7 @@
 //                          W/m2 (radiant exitance of white light); the results then gain a column
 //                          illuminance_lux (lib/hrad/gather/photometry.h: Radiance's luminance
 //                          weights, and 179 lm/W for W/m2). Default: the unit the scene file declares
-//                          ("# hrad: emission-units lm/m2", README "Scene format"); the option overrides
+//                          ("#@hrad emission-units lm/m2", README "Scene format"); the option overrides
 //                          a declaration, with a warning when they differ
 //   --isolux IMAGE.png     with --grid: a false-colour isolux plot of the grid as seen from the side
 //                          its points face (u to the right; v up, or down where u x v points the
@@ -188,7 +188,7 @@ void add_probe_command(CLI::App& app) {
     std::optional<SolutionLinks> stored;
     const Solution solution = read_solution_ply(args->solution, &stored);
     check_solution_patches(solution, args->solution, scene, args->scene);
-    // The unit: the option's, else the scene's declaration ("# hrad: emission-units lm/m2").
+    // The unit: the option's, else the scene's declaration ("#@hrad emission-units lm/m2").
     if (scene.emission_units) {
       if (!units)
         units = scene.emission_units->units;

@@ -164,13 +164,13 @@ TEST(CliProbe, DeclaredUnitsGiveLuxAndAnIsoluxPlot) {
   EXPECT_EQ(read_rows(dir.path("g.csv"))[0].count("illuminance_lux"), 0u);
 }
 
-// A scene that declares its unit ("# hrad: emission-units", here in its MTL) gets lux without the
+// A scene that declares its unit ("#@hrad emission-units", here in its MTL) gets lux without the
 // option, the same values as with it; the option overrides a declaration, with a warning.
 TEST(CliProbe, SceneDeclaredUnitsGiveLuxWithoutTheOption) {
   TempDir dir;
   write_light_over_floor(dir);
   const std::string mtl = "newmtl floor\nKd 0 0 0\nKe 0.1 0.1 0.1\nnewmtl light\nKd 0 0 0\nKe 3 6 1.5\n";
-  dir.write("lit.mtl", "# hrad: emission-units W/m2\n" + mtl);
+  dir.write("lit.mtl", "#@hrad emission-units W/m2\n" + mtl);
   ASSERT_EQ(
       run_hrad("solve " + dir.path("lit.obj") + " --method full --quiet --out " + dir.path("s.ply"), dir).exit_code, 0);
   const std::string probe =

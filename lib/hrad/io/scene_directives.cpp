@@ -19,7 +19,8 @@ void declare_emission_units(Scene& scene, std::string_view value, const std::str
 
 void apply_scene_comment(Scene& scene, const std::string& file, std::size_t line, std::string_view comment) {
   const std::size_t first = comment.find_first_not_of(" \t");
-  if (first == std::string_view::npos || comment.substr(first, 5) != "hrad:") return;
+  if (first == std::string_view::npos || comment.substr(first, 5) != "@hrad") return;
+  if (comment.size() > first + 5 && comment[first + 5] != ' ' && comment[first + 5] != '\t') return;
   std::istringstream words{std::string(comment.substr(first + 5))};
   std::string key, value, extra;
   words >> key >> value >> extra;
@@ -27,7 +28,7 @@ void apply_scene_comment(Scene& scene, const std::string& file, std::size_t line
   if (key != "emission-units")
     throw Error(fmt::format("{}: unknown hrad declaration '{}' (known: emission-units)", where, key));
   if (value.empty() || !extra.empty())
-    throw Error(fmt::format("{}: 'hrad: emission-units' takes one unit, lm/m2 or W/m2", where));
+    throw Error(fmt::format("{}: '@hrad emission-units' takes one unit, lm/m2 or W/m2", where));
   declare_emission_units(scene, value, where);
 }
 
