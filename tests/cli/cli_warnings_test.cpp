@@ -112,5 +112,37 @@ TEST(CliWarnings, PowerThatDoesNotBalanceIsAWarning) {
   EXPECT_NE(report["warnings"][0].get<std::string>().find("does not balance power"), std::string::npos);
 }
 
+// A rug modelled flush with the floor (same plane, facing up): light reaching it lands on the rug and
+// on the floor beneath, so the solution absorbs more than the box emits; hrad says why before
+// solving. Lifted a tenth of a millimetre the rug hides the floor beneath it and the power balances.
+TEST(CliWarnings, CoplanarOverlapIsNamedAndIsWhyPowerDoesNotBalance) {
+  TempDir dir;
+  dir.write("box.mtl", kMtl);
+  for (const std::string height : {"0.000000", "0.000100"}) {
+    const std::string obj = dir.write(
+        "rug.obj", box_obj(false, "Lamp") + "o Rug\nusemtl Wall\nv 0.500000 " + height + " 0.250000\nv 0.500000 " +
+                       height + " 0.750000\nv 1.500000 " + height + " 0.750000\nv 1.500000 " + height +
+                       " 0.250000\nf 13 14 15 16\n");
+    const RunResult r = run_hrad(
+        "solve " + obj + " --method full --kernel analytic --quiet --report " + dir.path("r.json"), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json balance = nlohmann::json::parse(slurp(dir.path("r.json")))["power_balance"];
+    const double absorbed = (balance["absorbed_reflecting"].get<double>() + balance["absorbed_black"].get<double>()) /
+                            balance["emitted"].get<double>();
+    if (height == "0.000000") {
+      EXPECT_NE(r.err.find("1 pair of patches lie in one plane, facing the same way, and overlap (first: faces at "
+                           "lines 18 and 32"),
+                std::string::npos)
+          << r.err;
+      EXPECT_NE(r.err.find("does not balance power"), std::string::npos) << r.err;
+      EXPECT_GT(absorbed, 1.01) << balance.dump();
+    } else {
+      EXPECT_EQ(r.err.find("overlap"), std::string::npos) << r.err;
+      EXPECT_TRUE(balance["balanced"].get<bool>()) << balance.dump();
+      EXPECT_LT(absorbed, 1.0 + 1e-3) << balance.dump();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hrad::test

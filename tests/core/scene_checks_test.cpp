@@ -80,5 +80,27 @@ TEST(SceneChecks, EmitterFacingAwayFromEverythingIsFlagged) {
   EXPECT_TRUE(any_contains(scene_warnings(s), "no light reaches any surface"));
 }
 
+// A picture on the wall z = 0 (facing +z, as the wall): flush with it, the two overlap; lifted off
+// it, facing the other way, or beside it sharing only an edge, they do not.
+TEST(SceneChecks, CoplanarOverlapsFacingTheSameWayAreFlagged) {
+  const auto with_picture = [](double lift, bool flip, double x0) {
+    Scene s = box(false, false, Rgb::Constant(10));
+    s.patches.push_back(quad(Vec3(x0, 0.3, lift), Vec3(x0 + 0.3, 0.3, lift), Vec3(x0 + 0.3, 0.6, lift),
+                             Vec3(x0, 0.6, lift), 0, flip));
+    s.patches.back().area = 0.09;
+    s.patches.back().face = static_cast<int>(s.faces.size());
+    s.faces.push_back({"", 0, 42, 0.09, {static_cast<int>(s.patches.size()) - 1}});
+    return scene_warnings(s);
+  };
+  const std::vector<std::string> flush = with_picture(0.0, false, 0.2);
+  EXPECT_TRUE(any_contains(flush, "1 pair of patches lie in one plane, facing the same way, and overlap (first: "
+                                  "faces at lines 3 and 42"))
+      << (flush.empty() ? "" : flush[0]);
+  EXPECT_TRUE(with_picture(1e-3, false, 0.2).empty());
+  EXPECT_TRUE(with_picture(0.0, true, 0.2).empty());  // back to back: each hides the other's front
+  // Beside the wall's edge x = 1 in its plane: touching along the edge x = 1 only.
+  EXPECT_TRUE(with_picture(0.0, false, 1.0).empty());
+}
+
 }  // namespace
 }  // namespace hrad

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <map>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -20,6 +23,32 @@ bool in_front(const Patch& p, const Patch& q, double tol) {
   for (const Vec3& v : q.vertices)
     if ((v - p.vertices[0]).dot(p.normal) > tol) return true;
   return false;
+}
+
+/// Whether two convex patches in one plane (normal `n`) overlap by more than `tol` across every
+/// separating direction: by the separating axis theorem two convex polygons are disjoint exactly
+/// when some edge's in-plane normal separates them, so overlap means no edge separates them by
+/// more than -tol (touching along an edge or at a corner is not overlap).
+bool overlap(const Patch& a, const Patch& b, const Vec3& n, double tol) {
+  for (const Patch* edges : {&a, &b}) {
+    const std::vector<Vec3>& v = edges->vertices;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const Vec3 axis = (v[(i + 1) % v.size()] - v[i]).cross(n);
+      const double len = axis.norm();
+      if (len == 0.0) continue;
+      double a_lo = INFINITY, a_hi = -INFINITY, b_lo = INFINITY, b_hi = -INFINITY;
+      for (const Vec3& x : a.vertices) {
+        a_lo = std::min(a_lo, x.dot(axis) / len);
+        a_hi = std::max(a_hi, x.dot(axis) / len);
+      }
+      for (const Vec3& x : b.vertices) {
+        b_lo = std::min(b_lo, x.dot(axis) / len);
+        b_hi = std::max(b_hi, x.dot(axis) / len);
+      }
+      if (std::min(a_hi, b_hi) - std::max(a_lo, b_lo) <= tol) return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace
@@ -60,6 +89,41 @@ std::vector<std::string> scene_warnings(const Scene& scene) {
         "out of the room; flip them (counter-clockwise vertex order seen from inside; Blender: Mesh > Normals > "
         "Flip or Recalculate Inside)",
         blind, scene.patches.size(), 100.0 * blind_area / scene.total_area()));
+
+  // Faces of different input faces lying in one plane, facing the same way and overlapping (a
+  // picture or a rug modelled flush with its wall or floor): light reaching the overlap lands on
+  // both, so the scene absorbs more than it emits. Patches are bucketed by their plane, rounded.
+  {
+    std::map<std::tuple<long long, long long, long long, long long>, std::vector<int>> planes;
+    const double size = (hi - lo).norm();
+    for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+      const Patch& p = scene.patches[i];
+      const auto q = [](double x, double step) { return static_cast<long long>(std::llround(x / step)); };
+      planes[{q(p.normal.x(), 1e-6), q(p.normal.y(), 1e-6), q(p.normal.z(), 1e-6),
+              q(p.normal.dot(p.vertices[0]), 1e-7 * size)}]
+          .push_back(static_cast<int>(i));
+    }
+    std::size_t pairs = 0;
+    double area = 0.0;
+    std::string first;
+    for (const auto& [key, members] : planes)
+      for (std::size_t i = 0; i < members.size(); ++i)
+        for (std::size_t j = i + 1; j < members.size(); ++j) {
+          const Patch& a = scene.patches[static_cast<std::size_t>(members[i])];
+          const Patch& b = scene.patches[static_cast<std::size_t>(members[j])];
+          if (a.face == b.face || !overlap(a, b, a.normal, 1e-7 * size)) continue;
+          if (pairs++ == 0)
+            first = fmt::format("faces at lines {} and {}", scene.faces[static_cast<std::size_t>(a.face)].line,
+                                scene.faces[static_cast<std::size_t>(b.face)].line);
+          area += std::min(a.area, b.area);
+        }
+    if (pairs > 0)
+      out.push_back(fmt::format(
+          "{} pair{} of patches lie in one plane, facing the same way, and overlap (first: {}; up to {:.3g}% of the "
+          "area): light reaching an overlap lands on both, so the scene absorbs more than it emits; lift the face "
+          "on top off its plane or cut it out of the one beneath",
+          pairs, pairs == 1 ? "" : "s", first, 100.0 * area / scene.total_area()));
+  }
 
   // Light reaching something: an emitter and a receiver each in front of the other.
   if (scene.emitter_count() > 0) {

@@ -9,7 +9,11 @@
 //     its plane can neither receive nor send light; when such faces hold most of the area, the
 //     normals point out of the room (the most common modelling mistake), so flip them;
 //   * no light reaching any surface: no emitter has a face in front of it that also has the emitter
-//     in front of it (every emitter faces away from everything).
+//     in front of it (every emitter faces away from everything);
+//   * coplanar overlaps: patches of different faces in one plane, facing the same way, that overlap
+//     (a picture or a rug flush with its wall or floor): light reaching the overlap is received by
+//     both, so the solution absorbs more than the scene emits (exact visibility cannot say which
+//     is on top). Found by bucketing patches by their plane and a separating-axis test per pair.
 // The tests are exact for flat faces (a point in front of a plane, with a tolerance of 1e-9 of the
 // scene's size for points on the plane) and cost O(faces^2) at worst, stopping at the first face in front.
 #pragma once
