@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -17,7 +19,13 @@
 #include "hrad/analysis/power_law_fit.h"
 #include "hrad/core/error.h"
 #include "hrad/io/obj_reader.h"
+#include "hrad/solvers/cluster_transfer.h"
+#include "hrad/solvers/hsa_links.h"
+#include "hrad/solvers/push_pull.h"
+#include "hrad/solvers/refine.h"
+#include "hrad/solvers/refinement_oracle.h"
 #include "hrad/solvers/solve.h"
+#include "hrad/solvers/solver_context.h"
 #include "solver_test_scenes.h"
 
 namespace hrad {
@@ -380,6 +388,79 @@ TEST(LinearBasis, ErrorUnderASmallLightFallsAsHSquaredAndTheConstantElementsAsH)
   EXPECT_GT(fl.b, 1.7);
   EXPECT_GT(fc.b, 0.8);
   EXPECT_LT(fc.b, 1.3);
+}
+
+// --- The refinement oracle with linear leaves --------------------------------------------------
+
+// The light above the floor refined by the error-bounding oracle at `feps` (aeps small enough never
+// to stop it), with the linear-leaves rule or the corner rule (OracleTolerances::linear_leaves),
+// gathered once through the links' fields and pushed to linear leaves: the floor's radiosity is
+// then complete (the light reflects nothing, the floor sees nothing of itself). Returns the links
+// and the floor field's relative L2 error against Howell's closed form, by each leaf's Simpson
+// quadrature of (B_h - B)^2 at its points.
+struct RefinedFloor {
+  std::size_t links = 0;
+  double error = 0.0;
+};
+
+RefinedFloor refine_floor(const LightAboveFloor& l, double feps, bool linear_leaves) {
+  SolveOptions o;
+  o.basis = Basis::kLinear;
+  o.feps = feps;
+  o.aeps = 4.0 / std::pow(4.0, 8);
+  SolverContext ctx(l.scene, o, Method::kHierarchical);
+  ElementHierarchy h(l.scene);
+  const ClusterTransfer geometry(l.scene, h, nullptr);
+  std::vector<Rgb> clusters;
+  const ErrorBoundOracle oracle(h, nullptr, geometry, ctx.evaluator(), {o.feps, 0.0, o.aeps, true, linear_leaves},
+                                source_weights(l.scene, 1), 1, &clusters);
+  const RefineResult refined = refine(h, nullptr, oracle, {{h.root(0), h.root(1)}}, {});
+  const PushPull push_pull(l.scene, h, nullptr, 1, Basis::kLinear);
+  const HsaLinks hsa(refined.links, h, nullptr, geometry);
+  NodeField field = push_pull.make_field();
+  field.clear_gathered();
+  hsa.gather(field);
+  push_pull.push_pull(field);
+  double num = 0.0, den = 0.0;
+  for (const NodeId leaf : h.all_leaves()) {
+    const ElementNode& n = h.node(leaf);
+    if (n.patch != 0) continue;
+    const SimpsonPoints points = simpson_points(n.polygon());
+    for (int k = 0; k < points.count; ++k) {
+      const double b = field.point_radiosity[static_cast<std::size_t>(leaf)][static_cast<std::size_t>(k)][0];
+      const double exact = l.exact(points.x[k])[0];
+      num += points.weight[k] * (b - exact) * (b - exact);
+      den += points.weight[k] * exact * exact;
+    }
+  }
+  return {refined.links.size(), std::sqrt(num / den)};
+}
+
+TEST(LinearBasis, AdaptiveLinearLeavesFollowTheirToleranceUnderASmallLight) {
+  // Each link's factor field strays from what the leaves keep of it by at most feps / w(light) at
+  // its points (refinement_oracle.h), and with aeps far below the leaves it needs, only feps stops
+  // the refinement: the floor's error must then fall in proportion to feps (fitted log-log slope of
+  // the L2 error against feps within [0.8, 1.25] over feps 0.03 to 0.001), with the least-squares
+  // rule of linear leaves and with the corner rule alike. A refinement stopped by aeps flattens the
+  // slope; a rule that measures links against their mean alone (as for constant leaves) refines
+  // 20-150x further at each feps and steepens it past 1.3. On this field the two linear rules give
+  // links and errors within about 10% of each other: the least-squares and the corner fits differ
+  // only in the factor's cross terms, which a single light far above the floor hardly has.
+  const LightAboveFloor l;
+  const std::vector<double> feps = {0.03, 0.01, 0.003, 0.001};
+  for (const bool linear_leaves : {true, false}) {
+    std::vector<double> errors;
+    for (const double f : feps) {
+      const RefinedFloor r = refine_floor(l, f, linear_leaves);
+      std::printf("%s rule, feps %g: %zu links, L2 error %.3e\n", linear_leaves ? "least-squares" : "corner", f,
+                  r.links, r.error);
+      errors.push_back(r.error);
+    }
+    const PowerLawFit fit = fit_power_law(feps, errors);
+    std::printf("slope %.2f\n", fit.b);
+    EXPECT_GT(fit.b, 0.8) << "linear leaves " << linear_leaves;
+    EXPECT_LT(fit.b, 1.25) << "linear leaves " << linear_leaves;
+  }
 }
 
 TEST(LinearBasis, FullMatrixAndSubstructuringErrorsUnderASmallLightFallAsHSquared) {

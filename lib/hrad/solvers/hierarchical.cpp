@@ -108,7 +108,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   const ClusterTransfer geometry(scene, h, tree.get());
   std::vector<Rgb> cluster_radiosity(tree ? tree->size() : 0, Rgb::Zero());
   const ErrorBoundOracle oracle(h, tree.get(), geometry, ctx.evaluator(),
-                                {t.feps, t.bfeps, t.aeps, options.push == Push::kHsa},
+                                {t.feps, t.bfeps, t.aeps, options.push == Push::kHsa, options.basis == Basis::kLinear},
                                 source_weights(scene, ctx.channels()), ctx.channels(), &cluster_radiosity);
 
   std::vector<Candidate> work;

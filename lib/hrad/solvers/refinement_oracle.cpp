@@ -6,6 +6,7 @@
 
 #include "hrad/formfactor/simpson_rule.h"
 #include "hrad/geometry/polygon.h"
+#include "hrad/solvers/linear_basis.h"
 #include "hrad/visibility/sampling.h"
 
 namespace hrad {
@@ -112,31 +113,63 @@ void point_visibility(const FormFactorEvaluator& ev, const ElementNode& r, const
   }
 }
 
-// The largest error of a link's factor if it were a linear field (bilinear on a quad) through the
-// side's corners moved to the link's mean `mean` (per unit radiosity of the source), or with
-// `linear` false the mean itself: how far the visible point factors stray from it, plus each
-// point's sampling doubt. A conservative measure of the error of the quadratic field the link
-// carries (shape_of()), which passes through the points.
-double linear_error(const Side& side, double mean, bool with_doubt = true, bool linear = true) {
+// What a link's field over a receiver is measured against (OracleTolerances::fields, linear_leaves).
+enum class Fit : std::uint8_t {
+  kMean,          ///< the link's mean factor
+  kCorners,       ///< the linear field through the receiver's corners, moved to the link's mean
+  kLeastSquares,  ///< the least-squares linear field of the points (the linear basis's projection), moved to the mean
+};
+
+// The largest error of a link's factor if it were the `fit` field over the side, moved to the link's
+// mean `mean` (per unit radiosity of the source): how far the visible point factors stray from it,
+// plus each point's sampling doubt. With kCorners, a conservative measure of the error of the
+// quadratic field the link carries (shape_of()), which passes through the points. With
+// kLeastSquares, the part of the link's field that a linear element's projection (linear_basis.h
+// linear_projection(), the element's own Simpson inner product) does not keep: what a linear leaf
+// loses of the link, which no choice of corner values recovers.
+double field_error(const Side& side, double mean, bool with_doubt, Fit fit) {
   const int corners = side.points.count == 9 ? 4 : 3;
-  const std::array<double, 4> w = corner_mean_weights(side.points);
-  std::array<double, 4> g{};
-  double g_mean = 0.0;
-  for (int i = 0; i < corners; ++i) {
-    g[i] = side.factor[i] * side.visible[i];
-    g_mean += w[i] * g[i];
+  std::array<double, 9> field{};
+  if (fit == Fit::kLeastSquares) {
+    const LinearProjection projection = linear_projection(side.points);
+    std::array<double, 4> corner{};
+    for (int a = 0; a < corners; ++a)
+      for (int k = 0; k < side.points.count; ++k)
+        corner[static_cast<std::size_t>(a)] +=
+            projection.weight[static_cast<std::size_t>(a)][static_cast<std::size_t>(k)] *
+            side.factor[static_cast<std::size_t>(k)] * side.visible[static_cast<std::size_t>(k)];
+    // The projection keeps the points' weighted mean; the link's field has the link's mean.
+    double area = 0.0, g_mean = 0.0;
+    for (int k = 0; k < side.points.count; ++k) {
+      area += side.points.weight[k];
+      g_mean += side.points.weight[k] * side.factor[k] * side.visible[k];
+    }
+    const double shift = area > 0.0 ? mean - g_mean / area : 0.0;
+    for (int k = 0; k < side.points.count; ++k) {
+      double v = shift;
+      for (int a = 0; a < corners; ++a) v += corner[static_cast<std::size_t>(a)] * linear_function(corners, a, k);
+      field[static_cast<std::size_t>(k)] = v;
+    }
+  } else {
+    const std::array<double, 4> w = corner_mean_weights(side.points);
+    std::array<double, 4> g{};
+    double g_mean = 0.0;
+    for (int i = 0; i < corners; ++i) {
+      g[i] = side.factor[i] * side.visible[i];
+      g_mean += w[i] * g[i];
+    }
+    for (int i = 0; i < corners; ++i) g[i] = fit == Fit::kCorners ? g[i] + mean - g_mean : mean;
+    double centre = 0.0;
+    for (int i = 0; i < corners; ++i) centre += g[i] / corners;
+    for (int i = 0; i < side.points.count; ++i)
+      field[static_cast<std::size_t>(i)] = i < corners       ? g[i]
+                                           : i < 2 * corners ? 0.5 * (g[i - corners] + g[(i - corners + 1) % corners])
+                                                             : centre;
   }
-  for (int i = 0; i < corners; ++i) g[i] = linear ? g[i] + mean - g_mean : mean;
-  double centre = 0.0;
-  for (int i = 0; i < corners; ++i) centre += g[i] / corners;
   double e = 0.0;
-  for (int i = 0; i < side.points.count; ++i) {
-    const double field = i < corners       ? g[i]
-                         : i < 2 * corners ? 0.5 * (g[i - corners] + g[(i - corners + 1) % corners])
-                                           : centre;
-    e = std::max(
-        e, std::abs(side.factor[i] * side.visible[i] - field) + (with_doubt ? side.factor[i] * side.doubt[i] : 0.0));
-  }
+  for (int i = 0; i < side.points.count; ++i)
+    e = std::max(e, std::abs(side.factor[i] * side.visible[i] - field[static_cast<std::size_t>(i)]) +
+                        (with_doubt ? side.factor[i] * side.doubt[i] : 0.0));
   return e;
 }
 
@@ -315,6 +348,7 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   const double exchange = 0.5 * (sp.unoccluded + sq.unoccluded);  // A_p F(p -> q) = A_q F(q -> p)
   const double disagreement = 0.5 * std::abs(sp.unoccluded - sq.unoccluded);
   const bool splittable = can_split(c.p) || can_split(c.q);
+  const Fit fit = !tol_.fields ? Fit::kMean : tol_.linear_leaves ? Fit::kLeastSquares : Fit::kCorners;
 
   // Visibility: classify with the parent's occluders; the children inherit what is found.
   c.visible = c.known_visible || !evaluator_.effects().visibility;
@@ -353,7 +387,7 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
       if (fraction > 0.0) {
         const double f_pq = exchange * fraction / p.area, f_qp = exchange * fraction / q.area;
         const auto [e_p, e_q] =
-            weighted(c.p, c.q, linear_error(sp, f_pq, false, tol_.fields), linear_error(sq, f_qp, false, tol_.fields));
+            weighted(c.p, c.q, field_error(sp, f_pq, false, fit), field_error(sq, f_qp, false, fit));
         if (std::max(e_p, e_q) > 2.0) {
           c.decision = split_choice(c.p, c.q, e_p, e_q);
           return;
@@ -369,7 +403,7 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   // The link carries the factor's shape over each side (push_pull.h); its error is bounded by how
   // far the visible point factors stray from a linear field.
   const double f_pq = exchange * fraction / p.area, f_qp = exchange * fraction / q.area;
-  const double field_p = linear_error(sp, f_pq, true, tol_.fields), field_q = linear_error(sq, f_qp, true, tol_.fields);
+  const double field_p = field_error(sp, f_pq, true, fit), field_q = field_error(sq, f_qp, true, fit);
   const double err_p = field_p + disagreement / p.area;
   const double err_q = field_q + disagreement / q.area;
   auto [e_p, e_q] = weighted(c.p, c.q, err_p, err_q);

@@ -90,6 +90,14 @@ struct OracleTolerances {
   /// push carries each link's field, push_pull.h); false: from its constant mean factor (as HSA
   /// 1991 pushes; the leaf push, which resolves each link per leaf, keeps links that fine).
   bool fields = true;
+  /// True (with `fields`): the leaves hold linear fields (--basis linear), which keep the part of a
+  /// link's factor field that a linear (bilinear) field over the receiver represents, so a link's
+  /// error is what the least-squares linear fit of its visible point factors leaves at the points
+  /// (Gortler, Schroeder, Cohen & Hanrahan 1993, "Wavelet radiosity": a link is kept where the
+  /// kernel is well represented by the basis at that level; Zatz 1993's Galerkin bases). False: the
+  /// error of the linear field through the receiver's corners moved to the link's mean, which the
+  /// constant basis's refinement reads.
+  bool linear_leaves = false;
 };
 
 /// Pairs of clusters (or a cluster and an element) farther apart than this many times the sum of
@@ -100,7 +108,8 @@ inline constexpr double kClusterSeparation = 3.0;
 /// receiver gathers it, is within the tolerance on both sides: at the corner, edge-midpoint and
 /// centre points x_i of p (simpson_rule.h) the factor F(x_i -> q) times x_i's visible fraction of q
 /// strays from the link's field over p (a linear field through p's corners with the link's mean;
-/// or the mean itself, OracleTolerances::fields) by at most feps / w(q), w(q) the source's a-priori
+/// with linear leaves the least-squares linear field of the points, which is what a linear leaf
+/// keeps; or the mean itself: OracleTolerances) by at most feps / w(q), w(q) the source's a-priori
 /// radiosity weight (hierarchical_tolerances() and source_weights()); the same for q. This is the
 /// error at receiver points that HSA 1991 sec. 4 asks to bound, in place of their F > feps test,
 /// and it sees both the falloff and shadows across the receiver (Lischinski, Smits & Greenberg
