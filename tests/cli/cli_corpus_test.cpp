@@ -95,5 +95,36 @@ TEST(CliCorpus, HandWrittenExporterFurnacesKeepTheirMaterialsAndSolveToTheClosed
   }
 }
 
+// The same furnace as MeshLab writes PLY (make_furnaces.py: binary little endian, per-face uchar colour
+// with alpha, per-face custom float attributes emission_r/g/b). Byte colours make the reflectances
+// 128/255 and 191/255 and float emissions make E / (1 - rho) 4 only to float precision, so each
+// patch's radiosity must lie between the least and the greatest of the patches' E / (1 - rho) (B =
+// sum_k (rho F)^k E is monotone in E), and all of them within float precision of 4.
+TEST(CliCorpus, MeshLabPlyFurnaceSolvesToTheClosedForm) {
+  TempDir dir;
+  const std::string file = "tests/io/corpus/hand/meshlab/furnace.ply";
+  const RunResult r = run_hrad("solve " + file + " --method full --quiet --report " + dir.path("r.json"), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(slurp(dir.path("r.json")));
+  ASSERT_EQ(report["patches"].size(), 6u);
+  double least = 1e300, greatest = 0.0;
+  for (const auto& p : report["patches"])
+    for (int k = 0; k < 3; ++k) {
+      const double ratio = p["emission"][k].get<double>() / (1.0 - p["reflectance"][k].get<double>());
+      least = std::min(least, ratio);
+      greatest = std::max(greatest, ratio);
+    }
+  EXPECT_NEAR(least, 4.0, 1e-6);
+  EXPECT_NEAR(greatest, 4.0, 1e-6);
+  for (const auto& p : report["patches"]) {
+    EXPECT_DOUBLE_EQ(p["reflectance"][0].get<double>(), p["face"].get<int>() == 0 ? 191.0 / 255.0 : 128.0 / 255.0);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_GE(p["radiosity"][k].get<double>(), least * (1 - 1e-9)) << "face " << p["face"];
+      EXPECT_LE(p["radiosity"][k].get<double>(), greatest * (1 + 1e-9)) << "face " << p["face"];
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hrad::test

@@ -5,6 +5,7 @@ Every cube has its faces' normals pointing inwards and two materials with the sa
 (walls: Kd 0.5, Ke 2; floor: Kd 0.75, Ke 1), so the exact answer is B = 4 on every face, whatever the
 form factors, and the floor's material must stay apart from the walls' one. Usage: make_furnaces.py DIR
 """
+import struct
 import sys
 from pathlib import Path
 
@@ -67,5 +68,28 @@ def write_sketchup():
     (d / "furnace.mtl").write_text("\n".join(mtl))
 
 
+def write_meshlab():
+    """MeshLab's PLY export (VCG library): binary little endian, 'comment VCGLIB generated', float
+    positions, per-face colour as uchar red green blue alpha, and per-face custom attributes (MeshLab's
+    "Define New Per Face Attribute" filter, exported with "Custom attributes" ticked) emission_r/g/b
+    as float. Colours are bytes, so the reflectances are 128/255 (walls) and 191/255 (floor) and the
+    emissions 4 (1 - rho) rounded to float: B = E / (1 - rho) is 4 to float precision on every face."""
+    header = ["ply", "format binary_little_endian 1.0", "comment VCGLIB generated", "element vertex 8",
+              "property float x", "property float y", "property float z", "element face 6",
+              "property list uchar int vertex_indices", "property uchar red", "property uchar green",
+              "property uchar blue", "property uchar alpha", "property float emission_r", "property float emission_g",
+              "property float emission_b", "end_header"]
+    body = b"".join(struct.pack("<3f", *v) for v in V)
+    for i, f in enumerate(F):
+        c = 191 if i == 0 else 128
+        e = 4.0 * (1.0 - c / 255.0)
+        body += struct.pack("<B4i", 4, *(v - 1 for v in f)) + struct.pack("<4B", c, c, c, 255)
+        body += struct.pack("<3f", e, e, e)
+    d = out / "meshlab"
+    d.mkdir(parents=True, exist_ok=True)
+    (d / "furnace.ply").write_bytes(("\n".join(header) + "\n").encode() + body)
+
+
 write_3dsmax()
 write_sketchup()
+write_meshlab()
