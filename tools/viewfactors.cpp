@@ -59,6 +59,21 @@
 //   --heat Q.csv       the exchange's result: surface,name,area,emissivity,temperature,heat_flux
 //                      (net W/m^2 leaving),heat_rate (W),radiosity
 //   --sky-temperature K    the sky's temperature for the rows' remainder (default 0 K)
+//   --method M         how --boundary's exchange is solved: matrix (default: the net radiation
+//                      method on the surfaces' view-factor matrix, one radiosity per surface), or
+//                      by a radiosity solver on its own elements (lib/hrad/viewfactors/radiosity_exchange.h):
+//                      full (the n x n element matrix, LU), substructure (patches shoot, elements
+//                      receive) or hierarchical (HSA links, push-pull). The solvers let the radiosity
+//                      vary over a surface, write no matrix (no --out, --report or matrix options) and
+//                      take the sky at 0 K (they hold no per-element sky factor); unoccluded factors
+//                      by the closed form (the solvers' analytic kernel)
+//   --max-area A       full, substructure: largest element area (default total area / 250)
+//   --patch-area A     substructure: largest shooting-patch area (default total area / 64)
+//   --feps F, --aeps A hierarchical: form-factor tolerance (default 0.01), smallest element area
+//                      (default total area / 1000)
+//   --tolerance T      substructure, hierarchical: iterations stop at this estimated relative error
+//                      (default 1e-9)
+//   --visibility-samples K  full, substructure, hierarchical: point pairs per partly visible pair (default 64)
 //   --threads N        worker threads (default: all cores); the result does not depend on it
 //   --quiet            no progress on stderr
 // Before any pair is computed, the matrix's memory and --out's size are estimated from a sample of
@@ -69,6 +84,8 @@
 // work; outputs are written atomically and never replace an input.
 #include <sys/resource.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -82,11 +99,13 @@
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/points_csv.h"
 #include "hrad/io/scene_reader.h"
+#include "hrad/solvers/solve.h"
 #include "hrad/viewfactors/boundary_csv.h"
 #include "hrad/viewfactors/closure.h"
 #include "hrad/viewfactors/matrix_formats.h"
 #include "hrad/viewfactors/point_factors.h"
 #include "hrad/viewfactors/radiant_exchange.h"
+#include "hrad/viewfactors/radiosity_exchange.h"
 #include "hrad/viewfactors/view_factor_matrix.h"
 #include "hrad/viewfactors/view_factor_report.h"
 #include "hrad/viewfactors/view_factor_work.h"
@@ -109,17 +128,117 @@ double free_disk_bytes(const std::string& path) {
   return error ? 0.0 : static_cast<double>(space.available);
 }
 
+void write_heat_csv(const std::string& path, const SurfaceUnits& units, const std::vector<double>& area,
+                    const RadiantExchange& x) {
+  write_file_atomically(path, [&](std::ostream& o) {
+    o << "surface,name,area,emissivity,temperature,heat_flux,heat_rate,radiosity\n";
+    for (int u = 0; u < units.size(); ++u) {
+      const auto i = static_cast<std::size_t>(u);
+      o << fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", u, units.names[i], area[i],
+                       units.emissivity[i], x.temperature[i], x.heat_flux[i], x.heat_flux[i] * area[i],
+                       x.radiosity[i]);
+    }
+  });
+}
+
+// Options of the matrix and of the solvers: which --method each applies to.
+const char* const kMatrixOptions[] = {"--out",           "--format",      "--report",       "--visibility-error",
+                                      "--row-error",     "--max-rays",    "--exact",        "--threshold",
+                                      "--sample-below",  "--far-rays",    "--enforce-closure", "--write-vs3",
+                                      "--points",        "--sky-temperature"};
+struct SolverOption {
+  const char* name;
+  std::vector<Method> methods;
+};
+const SolverOption kSolverOptions[] = {
+    {"--max-area", {Method::kFull, Method::kSubstructure}},
+    {"--patch-area", {Method::kSubstructure}},
+    {"--feps", {Method::kHierarchical}},
+    {"--aeps", {Method::kHierarchical}},
+    {"--tolerance", {Method::kSubstructure, Method::kHierarchical}},
+    {"--visibility-samples", {Method::kFull, Method::kSubstructure, Method::kHierarchical}},
+};
+
+struct Args {
+  std::string scene, out, format, by = "face", report, write_vs3, points, boundary, heat, method = "matrix";
+  double visibility_error = 0.01, row_error = 0.0, threshold = 0.0, sample_below = 0.0, sky_temperature = 0.0;
+  double max_area = 0.0, patch_area = 0.0, feps = 0.0, aeps = 0.0, tolerance = 1e-9;
+  int max_rays = 4096, far_rays = 16, threads = 0, visibility_samples = kDefaultVisibilitySamples;
+  bool exact = false, enforce_closure = false, quiet = false;
+};
+
+// --method full|substructure|hierarchical: the exchange by a radiosity solver, no matrix.
+void solve_exchange_command(const CLI::App& cmd, Args& args) {
+  if (args.method != "full" && args.method != "substructure" && args.method != "hierarchical")
+    throw Error(fmt::format("--method: '{}' is not matrix, full, substructure or hierarchical", args.method));
+  SolveOptions o;
+  o.method = parse_method(args.method);
+  for (const char* name : kMatrixOptions)
+    if (cmd.count(name) > 0)
+      throw Error(fmt::format("{}: applies to --method matrix; --method {} solves the exchange on its own elements "
+                              "(no matrix, the sky at 0 K)",
+                              name, args.method));
+  for (const SolverOption& s : kSolverOptions)
+    if (cmd.count(s.name) > 0 && std::find(s.methods.begin(), s.methods.end(), o.method) == s.methods.end())
+      throw Error(fmt::format("{}: does not apply to --method {}", s.name, args.method));
+  if (args.by != "face" && args.by != "group") throw Error(fmt::format("--by: '{}' is not face or group", args.by));
+  if (args.boundary.empty() || args.heat.empty())
+    throw Error(fmt::format("--method {} solves radiant exchange: give --boundary B.csv and --heat Q.csv", args.method));
+  for (const auto& [name, value] : {std::pair<const char*, double>{"--max-area", args.max_area},
+                                    {"--patch-area", args.patch_area},
+                                    {"--feps", args.feps},
+                                    {"--aeps", args.aeps},
+                                    {"--tolerance", args.tolerance}})
+    if (cmd.count(name) > 0 && !(std::isfinite(value) && value > 0.0))
+      throw Error(fmt::format("{} must be > 0, got {}", name, value));
+  if (args.threads < 0) throw Error(fmt::format("--threads: {} is negative", args.threads));
+  o.max_area = args.max_area;
+  o.patch_area = args.patch_area;
+  o.feps = args.feps;
+  o.aeps = args.aeps;
+  o.tolerance = args.tolerance;
+  o.visibility_samples = args.visibility_samples;
+  o.threads = args.threads;
+  // Exact unoccluded factors (the closed form): the balance of a closed model rests on its rows' closure.
+  o.kernel = FormFactorKernel::kAnalytic;
+  if (!args.quiet) o.progress = [](std::string_view line) { std::cerr << "hrad viewfactors: " << line << "\n"; };
+  validate_options(o);
+  const bool vs3_input = std::filesystem::path(args.scene).extension() == ".vs3";
+  if (vs3_input && args.by != "face") throw Error("--by group: a .vs3 model's rows are its surfaces");
+  OutputFiles outputs;
+  outputs.declare("--heat", args.heat);
+  outputs.check_inputs({{"the scene", args.scene}, {"--boundary", args.boundary}});
+
+  std::vector<std::string> warnings;
+  ObjReadOptions read_options;
+  read_options.progress = o.progress;
+  Vs3Model model;
+  if (vs3_input) {
+    model = read_vs3(args.scene, &warnings);
+  } else {
+    model.scene = read_scene(args.scene, &warnings, read_options);
+    model.units = args.by == "group" ? group_units(model.scene) : face_units(model.scene);
+  }
+  std::vector<std::pair<std::string, std::string>> inputs;
+  for (const std::string& f : model.scene.files) inputs.emplace_back("an input of the scene", f);
+  outputs.check_inputs(inputs);
+  for (const std::string& w : warnings) std::cerr << w << "\n";
+  const std::vector<SurfaceCondition> conditions = read_boundary_csv(args.boundary, model.units.size());
+  const RadiosityExchange r = solve_exchange_by_radiosity(model.scene, model.units, conditions, o);
+  write_heat_csv(args.heat, model.units, model.units.area, r.exchange);
+  outputs.commit();
+  const SolveSummary& sum = r.summary;
+  std::cout << fmt::format(
+      "{}: radiant exchange by {}: {} surfaces, {} elements, {} links; {}; net heat leaving all surfaces {:.6g} W "
+      "(0 in a closed model; an open one's loss to the sky); {:.3f} s, peak memory {:.0f} MB\n",
+      model.scene.path, to_string(sum.method), model.units.size(), sum.elements, sum.links, sum.message,
+      r.exchange.sky_heat, sum.total_seconds, peak_memory_mb());
+}
 }  // namespace
 
 void add_viewfactors_command(CLI::App& app) {
   auto* cmd =
       app.add_subcommand("viewfactors", "Obstructed view-factor matrix between faces or groups (thermal radiation)");
-  struct Args {
-    std::string scene, out, format, by = "face", report, write_vs3, points, boundary, heat;
-    double visibility_error = 0.01, row_error = 0.0, threshold = 0.0, sample_below = 0.0, sky_temperature = 0.0;
-    int max_rays = 4096, far_rays = 16, threads = 0;
-    bool exact = false, enforce_closure = false, quiet = false;
-  };
   auto args = std::make_shared<Args>();
   cmd->add_option("SCENE", args->scene, "Scene file (.obj, .ply, .gltf, .glb)")->required();
   cmd->add_option("--out", args->out, "Write the matrix here (.csv dense, .mtx, .txt View3D layout)");
@@ -143,9 +262,28 @@ void add_viewfactors_command(CLI::App& app) {
   cmd->add_option("--boundary", args->boundary, "Radiant exchange: conditions (CSV surface,temperature,heat_flux)");
   cmd->add_option("--heat", args->heat, "Radiant exchange: write net heat per surface here (CSV)");
   cmd->add_option("--sky-temperature", args->sky_temperature, "Sky temperature, K (default 0)");
+  cmd->add_option("--method", args->method,
+                  "Radiant exchange by: matrix (default) | full | substructure | hierarchical");
+  cmd->add_option("--max-area", args->max_area, "Full/substructure: largest element area (default total/250)");
+  cmd->add_option("--patch-area", args->patch_area, "Substructure: largest shooting-patch area (default total/64)");
+  cmd->add_option("--feps", args->feps, "Hierarchical: form-factor tolerance (default 0.01)");
+  cmd->add_option("--aeps", args->aeps, "Hierarchical: smallest element area (default total/1000)");
+  cmd->add_option("--tolerance", args->tolerance,
+                  "Substructure/hierarchical: estimated relative error to stop at (default 1e-9)");
+  cmd->add_option("--visibility-samples", args->visibility_samples,
+                  "Solvers: point pairs per partly visible pair (default 64)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
-  cmd->callback([args] {
+  cmd->callback([cmd, args] {
+    if (args->method != "matrix") {
+      solve_exchange_command(*cmd, *args);
+      return;
+    }
+    for (const SolverOption& s : kSolverOptions)
+      if (cmd->count(s.name) > 0)
+        throw Error(fmt::format("{}: applies to the radiosity solvers (--method full|substructure|hierarchical), "
+                                "not to --method matrix",
+                                s.name));
     if (args->by != "face" && args->by != "group")
       throw Error(fmt::format("--by: '{}' is not face or group", args->by));
     if (!(args->visibility_error > 0.0 && args->visibility_error < 1.0))
@@ -264,15 +402,7 @@ void add_viewfactors_command(CLI::App& app) {
         {"stored_pairs", work.stored_pairs}, {"memory_bytes", work.memory_bytes}, {"output_bytes", work.output_bytes}};
     if (!conditions.empty()) {
       const RadiantExchange x = solve_radiant_exchange(m, units.emissivity, conditions, args->sky_temperature);
-      write_file_atomically(args->heat, [&](std::ostream& o) {
-        o << "surface,name,area,emissivity,temperature,heat_flux,heat_rate,radiosity\n";
-        for (int u = 0; u < m.n; ++u) {
-          const auto i = static_cast<std::size_t>(u);
-          o << fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", u, units.names[i], m.area[i],
-                           units.emissivity[i], x.temperature[i], x.heat_flux[i], x.heat_flux[i] * m.area[i],
-                           x.radiosity[i]);
-        }
-      });
+      write_heat_csv(args->heat, units, m.area, x);
     }
     if (!args->report.empty())
       write_file_atomically(args->report, [&](std::ostream& o) { o << report.dump(2) << "\n"; });

@@ -17,6 +17,9 @@ const char* kCube =
     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
     "o floor\nf 1 2 3 4\no ceiling\nf 5 8 7 6\no w1\nf 1 5 6 2\no w2\nf 2 6 7 3\no w3\nf 3 7 8 4\no w4\nf 4 8 5 1\n";
 
+// Radiant exchange in the cube: floor 600 K, ceiling 300 K, two walls reradiating, two at 400 K and 350 K.
+const char* kCubeConditions = "surface,temperature,heat_flux\n0,600,\n1,300,\n2,,0\n3,,0\n4,400,\n5,350,\n";
+
 // Dense rows of numbers split by `separator`.
 std::vector<std::vector<double>> numbers(const std::string& text, char separator, std::size_t skip_lines = 0) {
   std::vector<std::vector<double>> rows;
@@ -140,6 +143,7 @@ TEST(CliViewFactors, WorkBeyondMemoryIsRefusedWithAnEstimate) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+
 }  // namespace
 }  // namespace hrad::test
 
@@ -161,7 +165,7 @@ TEST(CliViewFactors, Vs3AndObjGiveTheSameMatrixAndExchangeBalances) {
   EXPECT_EQ(slurp(dir.path("obj.txt")), slurp(dir.path("vs3.txt")));
 
   const std::string bc =
-      dir.write("bc.csv", "surface,temperature,heat_flux\n0,600,\n1,300,\n2,,0\n3,,0\n4,400,\n5,350,\n");
+      dir.write("bc.csv", kCubeConditions);
   const RunResult x = run_hrad("viewfactors " + scene + " --out " + dir.path("F.csv") + " --boundary " + bc +
                                    " --heat " + dir.path("Q.csv") + " --quiet",
                                dir);
@@ -187,6 +191,94 @@ TEST(CliViewFactors, Vs3AndObjGiveTheSameMatrixAndExchangeBalances) {
   EXPECT_NE(e.exit_code, 0);
   EXPECT_NE(e.err.find("bad.csv:3: surface 0 was given on line 2"), std::string::npos) << e.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path("G.csv")));
+}
+
+
+// Net heat per surface (W) from a --heat file, in surface order.
+std::vector<double> heat_rates(const std::string& path) {
+  std::istringstream q(slurp(path));
+  std::string line;
+  std::getline(q, line);
+  std::vector<double> rates;
+  while (std::getline(q, line)) rates.push_back(std::stod(csv_cells(line)[6]));
+  return rates;
+}
+
+// The cube's exchange by each radiosity solver at one element per face (the options that stop
+// subdivision) is the net radiation method on the faces: the matrix method's heat to 1e-9 of the
+// largest (full, substructure: factors exact to 1e-9) and 1e-7 (hierarchical: links' factors are
+// asked for 1e-7), and the closed cube balances to the same (the iterative methods stopped at
+// 1e-12, below the factors' error). Refined, the radiosity varies over the
+// faces and the heat moves by a few percent at most (the reradiating walls' share).
+TEST(CliViewFactors, ExchangeByEachSolverMatchesTheMatrixMethodOnFaces) {
+  TempDir dir;
+  const std::string scene = dir.write("cube.obj", kCube);
+  const std::string bc =
+      dir.write("bc.csv", kCubeConditions);
+  const RunResult m = run_hrad("viewfactors " + scene + " --out " + dir.path("F.csv") + " --boundary " + bc +
+                                   " --heat " + dir.path("matrix.csv") + " --quiet",
+                               dir);
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  const std::vector<double> reference = heat_rates(dir.path("matrix.csv"));
+  double largest = 0.0;
+  for (double q : reference) largest = std::max(largest, std::abs(q));
+  const std::pair<std::string, double> coarse[] = {{"full --max-area 10", 1e-9},
+                                                   {"substructure --max-area 10 --patch-area 10 --tolerance 1e-12", 1e-9},
+                                                   {"hierarchical --aeps 10 --tolerance 1e-12", 1e-7}};
+  for (const auto& [method, tolerance] : coarse) {
+    const std::string out = dir.path("q.csv");
+    std::filesystem::remove(out);
+    const RunResult r =
+        run_hrad("viewfactors " + scene + " --boundary " + bc + " --heat " + out + " --quiet --method " + method, dir);
+    ASSERT_EQ(r.exit_code, 0) << method << ": " << r.err;
+    EXPECT_NE(r.out.find("6 elements"), std::string::npos) << r.out;
+    const std::vector<double> q = heat_rates(out);
+    ASSERT_EQ(q.size(), reference.size());
+    double total = 0.0;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      EXPECT_NEAR(q[i], reference[i], tolerance * largest) << method << " surface " << i;
+      total += q[i];
+    }
+    EXPECT_NEAR(total, 0.0, tolerance * largest) << method;
+  }
+  for (const std::string method : {"full", "substructure", "hierarchical"}) {
+    const RunResult r = run_hrad(
+        "viewfactors " + scene + " --boundary " + bc + " --heat " + dir.path("fine.csv") + " --quiet --method " + method,
+        dir);
+    ASSERT_EQ(r.exit_code, 0) << method << ": " << r.err;
+    const std::vector<double> q = heat_rates(dir.path("fine.csv"));
+    for (std::size_t i = 0; i < q.size(); ++i) EXPECT_NEAR(q[i], reference[i], 0.05 * largest) << method << " " << i;
+    std::filesystem::remove(dir.path("fine.csv"));
+  }
+}
+
+TEST(CliViewFactors, ExchangeMethodOptionsThatDoNotApplyAreOneLineErrors) {
+  TempDir dir;
+  const std::string scene = dir.write("cube.obj", kCube);
+  const std::string bc =
+      dir.write("bc.csv", kCubeConditions);
+  const std::string heat = dir.path("Q.csv");
+  const std::string exchange = " --boundary " + bc + " --heat " + heat;
+  const std::pair<std::string, std::string> bad[] = {
+      {"--method full --out " + dir.path("F.csv") + exchange, "--out"},
+      {"--method hierarchical --sky-temperature 280" + exchange, "--sky-temperature"},
+      {"--method substructure --exact" + exchange, "--exact"},
+      {"--method full --feps 0.1" + exchange, "--feps"},
+      {"--method hierarchical --max-area 0.1" + exchange, "--max-area"},
+      {"--method full --patch-area 0.1" + exchange, "--patch-area"},
+      {"--out " + dir.path("F.csv") + " --aeps 0.1" + exchange, "--aeps"},
+      {"--method full", "--boundary"},
+      {"--method radiosity" + exchange, "--method"},
+      {"--method hierarchical --feps -1" + exchange, "--feps"},
+  };
+  for (const auto& [options, named] : bad) {
+    const RunResult r = run_hrad("viewfactors " + scene + " " + options + " --quiet", dir);
+    EXPECT_NE(r.exit_code, 0) << options;
+    ASSERT_EQ(r.err_lines().size(), 1u) << options << ": " << r.err;
+    EXPECT_NE(r.err.find(named), std::string::npos) << options << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(heat)) << options;
+    EXPECT_FALSE(std::filesystem::exists(dir.path("F.csv"))) << options;
+  }
 }
 
 }  // namespace

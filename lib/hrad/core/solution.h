@@ -31,6 +31,9 @@ struct Solution {
   std::vector<std::vector<int>> faces;  ///< leaf elements, counter-clockwise vertex ids (T-vertices included)
   std::vector<int> face_patch;          ///< the patch (index into Scene::patches) each leaf lies on
   std::vector<Rgb> face_radiosity;      ///< constant radiosity of each leaf element (the unknowns), or its mean
+  /// The irradiance H each leaf gathered in the last gather (B = E + rho H there); its net outgoing
+  /// flux is face_radiosity - face_irradiance.
+  std::vector<Rgb> face_irradiance;
   /// Per face, the linear basis's field (its mean is face_radiosity); empty with the constant basis.
   std::vector<ElementField> face_field;
   std::vector<Rgb> patch_radiosity;  ///< area-weighted mean radiosity of each patch

@@ -40,7 +40,9 @@ struct ElementNode {
   Rgb radiosity = Rgb::Zero();    ///< B: the unknown, per channel
   Rgb emission = Rgb::Zero();     ///< E: the patch's emission (copied down at construction and split)
   Rgb reflectance = Rgb::Zero();  ///< rho: the patch's reflectance
-  Rgb gathered = Rgb::Zero();     ///< sum over links of F(this -> source) * B(source), before reflection
+  /// H: a leaf's irradiance (the mean over it of what its links gathered) in the solve's last
+  /// gather, so that B = E + rho H; the net flux leaving it is B - H (radiant exchange).
+  Rgb gathered = Rgb::Zero();
 
   bool is_leaf() const { return first_child == kNoNode; }
   std::span<const Vec3> polygon() const { return {vertices.data(), static_cast<std::size_t>(vertex_count)}; }

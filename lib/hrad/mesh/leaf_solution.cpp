@@ -91,12 +91,14 @@ Solution ElementHierarchy::to_solution(std::span<const std::array<Rgb, 9>> point
 
   out.face_patch.resize(leaf_ids.size());
   out.face_radiosity.resize(leaf_ids.size());
+  out.face_irradiance.resize(leaf_ids.size());
   std::vector<Rgb> patch_sum(static_cast<std::size_t>(patch_count_), Rgb::Zero());
   std::vector<double> patch_area(static_cast<std::size_t>(patch_count_), 0.0);
   for (std::size_t f = 0; f < leaf_ids.size(); ++f) {
     const ElementNode& e = node(leaf_ids[f]);
     out.face_patch[f] = e.patch;
     out.face_radiosity[f] = e.radiosity;
+    out.face_irradiance[f] = e.gathered;
     patch_sum[static_cast<std::size_t>(e.patch)] += e.area * e.radiosity;
     patch_area[static_cast<std::size_t>(e.patch)] += e.area;
   }

@@ -20,7 +20,7 @@ bool scene_has_no_reflection(const Scene& scene) {
   return true;
 }
 
-Effects analyse_effects(const Scene& scene, EffectsMode mode, const Visibility* visibility) {
+Effects analyse_effects(const Scene& scene, EffectsMode mode, const Visibility* visibility, bool irradiance) {
   Effects e;
   if (mode == EffectsMode::kAll) {
     e.visibility = true;
@@ -37,14 +37,15 @@ Effects analyse_effects(const Scene& scene, EffectsMode mode, const Visibility* 
     e.color_channels = 3;
     e.reasons.push_back("color: 3 channels: some reflectance or emission is coloured");
   }
-  if (scene_has_no_reflection(scene)) {
+  if (scene_has_no_reflection(scene) && !irradiance) {
     e.bounces = false;
     e.visibility = false;
     e.reasons.push_back("bounces: off: every reflectance is 0, so B = E and no form factor is needed");
     e.reasons.push_back("visibility: off: no form factor is needed");
   } else {
     e.bounces = true;
-    e.reasons.push_back("bounces: on: some reflectance is > 0");
+    e.reasons.push_back(irradiance ? "bounces: on: the gathered irradiance is asked for"
+                                   : "bounces: on: some reflectance is > 0");
     assert(visibility != nullptr);
     if (visibility->scene_has_occlusion()) {
       e.visibility = true;

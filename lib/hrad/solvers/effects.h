@@ -33,7 +33,9 @@ struct Effects {
 
 /// Analyses `scene`. In kAuto mode `visibility` must be the scene's oracle (it is asked
 /// scene_has_occlusion()); it may be null in kAll mode or when the scene has no bounces.
-Effects analyse_effects(const Scene& scene, EffectsMode mode, const Visibility* visibility);
+/// `irradiance`: the gathered irradiance is wanted (SolveOptions::irradiance), so the factors are
+/// needed even where nothing reflects: bounces stay on.
+Effects analyse_effects(const Scene& scene, EffectsMode mode, const Visibility* visibility, bool irradiance = false);
 
 /// True when every material's reflectance and emission have r == g == b exactly.
 bool scene_is_gray(const Scene& scene);

@@ -18,7 +18,7 @@ SolveSummary solve_linear_field(SolverContext& ctx, ElementHierarchy& h, const F
     push_pull.store(field, h, nullptr);
   }
   if (ctx.channels() == 1) {
-    for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity);
+    for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity), copy_gray(h.node(static_cast<NodeId>(i)).gathered);
     for (PointValues& v : field.point_radiosity)
       for (Rgb& b : v) copy_gray(b);
   }

@@ -135,6 +135,7 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
       rho(i, c) = h.node(leaves[static_cast<std::size_t>(i)]).reflectance[c];
     }
   Eigen::MatrixXd b = e;
+  Eigen::MatrixXd gathered;  // H = F B, what B = E + rho H reflects
   {
     auto phase = ctx.phase("solve");
     switch (options.linear_solver) {
@@ -158,9 +159,13 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
         NodeField field = push_pull.make_field();
         const LinkOperator* ops[] = {&links};
         iterate(ctx, push_pull, ops, field, radiosity_bound(scene));
+        gathered.resize(n, channels);
         for (int i = 0; i < n; ++i)
-          for (int c = 0; c < channels; ++c)
-            b(i, c) = field.radiosity[static_cast<std::size_t>(leaves[static_cast<std::size_t>(i)])][c];
+          for (int c = 0; c < channels; ++c) {
+            const auto id = static_cast<std::size_t>(leaves[static_cast<std::size_t>(i)]);
+            b(i, c) = field.radiosity[id][c];
+            gathered(i, c) = field.leaf_irradiance[id][c];
+          }
         break;
       }
       case LinearSolver::kGaussSeidel: {
@@ -179,10 +184,12 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
       }
     }
   }
+  // The direct solves gather once more from their answer: H = F B.
+  if (gathered.size() == 0) gathered = f * b;
   for (int i = 0; i < n; ++i) {
     ElementNode& node = h.node(leaves[static_cast<std::size_t>(i)]);
-    for (int c = 0; c < channels; ++c) node.radiosity[c] = b(i, c);
-    if (channels == 1) copy_gray(node.radiosity);
+    for (int c = 0; c < channels; ++c) node.radiosity[c] = b(i, c), node.gathered[c] = gathered(i, c);
+    if (channels == 1) copy_gray(node.radiosity), copy_gray(node.gathered);
   }
   h.pull_radiosity();
   return ctx.finish(h, factors, out);

@@ -182,7 +182,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     max_depth = std::max(max_depth, h.node(leaf).depth);
   }
   if (ctx.channels() == 1)
-    for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity);
+    for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity), copy_gray(h.node(static_cast<NodeId>(i)).gathered);
   std::size_t partial = 0, with_cluster = 0;
   for (const Link& l : links) {
     partial += l.partial ? 1 : 0;

@@ -1,6 +1,7 @@
 #include "hrad/solvers/iteration.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -34,7 +35,7 @@ double radiosity_bound(const Scene& scene) {
     e = std::max(e, m.emission.maxCoeff());
     rho = std::max(rho, m.reflectance.maxCoeff());
   }
-  return e / (1.0 - rho);
+  return rho < 1.0 ? e / (1.0 - rho) : INFINITY;  // a reflectance of 1 (a reradiating surface): no bound
 }
 
 }  // namespace hrad

@@ -37,6 +37,8 @@ struct NodeField {
   /// Per element: a leaf's radiosity at its points, E + rho H there (for display; interior: unset).
   std::vector<PointValues> point_radiosity;
   std::vector<PointValues> irradiance;  ///< per element: gathered at this node, to be pushed to its leaves
+  /// Per element: a leaf's mean irradiance H after the last push (what B = E + rho H used; interior: unset).
+  std::vector<Rgb> leaf_irradiance;
 
   void resize(std::size_t element_count, std::size_t cluster_count) {
     elements = element_count;
@@ -44,6 +46,7 @@ struct NodeField {
     PointValues zero;
     zero.fill(Rgb::Zero());
     irradiance.assign(element_count, zero);
+    leaf_irradiance.assign(element_count, Rgb::Zero());
     radiosity_moments.assign(element_count, zero);
     point_radiosity.assign(element_count, zero);
   }

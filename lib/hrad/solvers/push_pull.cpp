@@ -151,6 +151,9 @@ Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& 
         change->reflected = std::max(change->reflected, std::abs(b[k][c] - n.emission[c]));
       }
     }
+    Rgb h = Rgb::Zero();
+    for (int k = 0; k < points; ++k) h += mean_weights_[i][k] * total[k];
+    field.leaf_irradiance[i] = h;  // the projection keeps the mean: mean B = E + rho h
     field.point_radiosity[i] = b;
     field.radiosity[i] = mean;
     leaf_moments(field, id);
@@ -160,6 +163,7 @@ Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& 
     Rgb mean = Rgb::Zero();
     for (int k = 0; k < 9; ++k) mean += mean_weights_[i][k] * total[k];
     const Rgb b = n.emission + n.reflectance * mean;
+    field.leaf_irradiance[i] = mean;
     for (int k = 0; k < 9; ++k) field.point_radiosity[i][k] = n.emission + n.reflectance * total[k];
     for (int c = 0; c < channels_; ++c) {
       change->change = std::max(change->change, std::abs(b[c] - field.radiosity[i][c]));
@@ -277,7 +281,11 @@ void PushPull::pull_clusters(NodeField& field) const {
 }
 
 void PushPull::store(const NodeField& field, ElementHierarchy& h, std::vector<Rgb>* cluster_radiosity) const {
-  for (std::size_t i = 0; i < h.size(); ++i) h.node(static_cast<NodeId>(i)).radiosity = field.radiosity[i];
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    ElementNode& n = h.node(static_cast<NodeId>(i));
+    n.radiosity = field.radiosity[i];
+    n.gathered = field.leaf_irradiance[i];
+  }
   if (cluster_radiosity != nullptr) {
     cluster_radiosity->assign(field.radiosity.begin() + static_cast<std::ptrdiff_t>(field.elements),
                               field.radiosity.end());

@@ -48,7 +48,8 @@ class PushPull {
   LeafChange push_pull(NodeField& field) const;
   /// Sets interior elements' and clusters' radiosity from the leaves'.
   void pull(NodeField& field) const;
-  /// Copies the field's element radiosity into the hierarchy's nodes (for output and the B*F test)
+  /// Copies the field's element radiosity into the hierarchy's nodes (for output and the B*F test),
+  /// the leaves' irradiance into ElementNode::gathered,
   /// and the clusters' mean radiosity into `cluster_radiosity` (when not null).
   void store(const NodeField& field, ElementHierarchy& hierarchy, std::vector<Rgb>* cluster_radiosity) const;
 

@@ -600,7 +600,7 @@ std::vector<double> source_weights(const Scene& scene, int channels) {
   double area = 0.0;
   for (const Patch& p : scene.patches) {
     const Material& m = scene.material_of(p);
-    emitted += p.area * m.emission;
+    emitted += p.area * m.emission.abs();  // a fixed net flux (radiant exchange) may be negative
     reflectance += p.area * m.reflectance;
     area += p.area;
   }
@@ -616,7 +616,7 @@ std::vector<double> source_weights(const Scene& scene, int channels) {
     bool any = false;
     for (int c = 0; c < channels; ++c) {
       if (!(b_mean[c] > 0.0)) continue;
-      w = std::max(w, m.emission[c] / b_mean[c] + m.reflectance[c]);
+      w = std::max(w, std::abs(m.emission[c]) / b_mean[c] + m.reflectance[c]);
       any = true;
     }
     if (any) weights[i] = w;

@@ -89,6 +89,9 @@ struct SolveOptions {
   FormFactorKernel kernel = FormFactorKernel::kPointContour;
   /// Point pairs sampled per partially visible pair (the visibility oracle's `samples`).
   int visibility_samples = kDefaultVisibilitySamples;
+  /// Gather the irradiance even where nothing reflects (every reflectance 0), so that
+  /// Solution::face_irradiance holds H for radiant exchange (black surfaces still absorb).
+  bool irradiance = false;
   /// Hierarchical: also return each link pair as a segment between element centroids
   /// (Solution::link_segments), for figures.
   bool record_links = false;

@@ -33,9 +33,10 @@ SolverContext::SolverContext(const Scene& scene, const SolveOptions& options, Me
   if (options.threads > 0) thread_limit_ = std::make_unique<ThreadLimit>(options.threads);
   {
     auto p = phase("effects");
-    const bool may_need_visibility = options.effects == EffectsMode::kAll || !scene_has_no_reflection(scene);
+    const bool may_need_visibility =
+        options.effects == EffectsMode::kAll || options.irradiance || !scene_has_no_reflection(scene);
     if (may_need_visibility) visibility_ = make_visibility(scene);
-    summary_.effects = analyse_effects(scene, options.effects, visibility_.get());
+    summary_.effects = analyse_effects(scene, options.effects, visibility_.get(), options.irradiance);
   }
   evaluator_ = std::make_unique<FormFactorEvaluator>(scene, summary_.effects, visibility_.get(),
                                                      options.visibility_samples, options.kernel);

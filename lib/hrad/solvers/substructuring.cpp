@@ -120,7 +120,7 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
     push_pull.store(field, h, nullptr);
   }
   if (channels == 1)
-    for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity);
+    for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity), copy_gray(h.node(static_cast<NodeId>(i)).gathered);
   return ctx.finish(h, factors, out);
 }
 
