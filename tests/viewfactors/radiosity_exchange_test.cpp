@@ -116,6 +116,39 @@ TEST(RadiosityExchange, ThreeSurfaceNetworkAtOneElementPerFace) {
   }
 }
 
+// Black surfaces (eps = 1: nothing reflects and (J - E) / rho would be 0 / 0; the solvers must still
+// gather H), then gray ones with fixed net fluxes, nonzero among them: at one element per face each
+// method gives the matrix method's heat and temperatures (radiant_exchange.h on the same faces'
+// matrix) to the factors' accuracy.
+TEST(RadiosityExchange, BlackSurfacesAndFixedFluxesMatchTheMatrixMethod) {
+  const Scene s = make_box(2, 1, 3, {material(Rgb::Zero(), Rgb::Zero())}, {0, 0, 0, 0, 0, 0});
+  const SurfaceUnits black = face_units(s);
+  const ViewFactorMatrix f = compute_view_factors(s, black, plain_options());
+  SurfaceUnits gray = black;
+  gray.emissivity = {0.9, 0.5, 0.3, 1.0, 0.7, 0.2};
+  using K = SurfaceCondition::Kind;
+  const std::vector<SurfaceCondition> temperatures = {{K::kTemperature, 500}, {K::kTemperature, 300},
+                                                      {K::kTemperature, 350}, {K::kTemperature, 420},
+                                                      {K::kTemperature, 280}, {K::kTemperature, 600}};
+  const std::vector<SurfaceCondition> mixed = {{K::kTemperature, 500}, {K::kTemperature, 300},
+                                               {K::kHeatFlux, 800.0},  {K::kTemperature, 420},
+                                               {K::kHeatFlux, 0.0},    {K::kHeatFlux, -300.0}};
+  for (const auto& [units, bc] : {std::pair{black, temperatures}, std::pair{gray, mixed}}) {
+    const RadiantExchange ref = solve_radiant_exchange(f, units.emissivity, bc);
+    double largest = 0.0;
+    for (double q : ref.heat_flux) largest = std::max(largest, std::abs(q));
+    for (const Method m : kMethods) {
+      SCOPED_TRACE(std::string(to_string(m)));
+      const RadiosityExchange r = solve_exchange_by_radiosity(s, units, bc, coarse(m));
+      const double tolerance = factor_accuracy(m);
+      for (int u = 0; u < units.size(); ++u) {
+        EXPECT_NEAR(r.exchange.heat_flux[u], ref.heat_flux[u], tolerance * largest) << u;
+        EXPECT_NEAR(r.exchange.temperature[u], ref.temperature[u], tolerance * ref.temperature[u]) << u;
+      }
+    }
+  }
+}
+
 // Refined, the plates' radiosity falls towards their edges (the network's uniform radiosity is an
 // approximation). Whatever the distribution, the reradiating walls pass on between none and all
 // of the plates' open share 1 - F12, so the net heat lies between the network without walls
