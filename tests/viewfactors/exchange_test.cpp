@@ -70,14 +70,7 @@ TEST(RadiantExchange, PlatesWithReradiatingWalls) {
 // tolerance is twice the faceted inner sphere's relative area deficit.
 TEST(RadiantExchange, ConcentricSpheres) {
   const double r1 = 1.0, r2 = 2.0, e1 = 0.6, e2 = 0.4, t1 = 500.0, t2 = 300.0;
-  Scene outer = make_faceted_sphere(r2, 6, 8, material(Rgb::Constant(1 - e2), Rgb::Zero()),
-                                    material(Rgb::Constant(1 - e2), Rgb::Zero()));
-  const Scene inner = make_faceted_sphere(r1, 6, 8, material(Rgb::Constant(1 - e1), Rgb::Zero()),
-                                          material(Rgb::Constant(1 - e1), Rgb::Zero()));
-  const std::size_t outer_faces = outer.faces.size();
-  outer.materials.push_back(material(Rgb::Constant(1 - e1), Rgb::Zero()));
-  for (const Patch& p : inner.patches) add_polygon(outer, p.vertices, polygon_centroid(p.vertices), 2);  // outward
-  for (std::size_t f = 0; f < outer.faces.size(); ++f) outer.faces[f].group = f < outer_faces ? "outer" : "inner";
+  const Scene outer = make_concentric_spheres(r1, r2, e1, e2);
   const SurfaceUnits units = group_units(outer);
   ViewFactorMatrix m = compute_view_factors(outer, units, plain_options());
   ASSERT_EQ(m.n, 2);

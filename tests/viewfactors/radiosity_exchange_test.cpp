@@ -193,14 +193,7 @@ TEST(RadiosityExchange, PlatesApproachInfinitePlatesRefined) {
 // twice that deficit, as for the matrix method (exchange_test.cpp).
 TEST(RadiosityExchange, ConcentricSpheres) {
   const double r1 = 1.0, r2 = 2.0, e1 = 0.6, e2 = 0.4, t1 = 500.0, t2 = 300.0;
-  Scene s = make_faceted_sphere(r2, 6, 8, material(Rgb::Constant(1 - e2), Rgb::Zero()),
-                                material(Rgb::Constant(1 - e2), Rgb::Zero()));
-  const Scene inner = make_faceted_sphere(r1, 6, 8, material(Rgb::Constant(1 - e1), Rgb::Zero()),
-                                          material(Rgb::Constant(1 - e1), Rgb::Zero()));
-  const std::size_t outer_faces = s.faces.size();
-  s.materials.push_back(material(Rgb::Constant(1 - e1), Rgb::Zero()));
-  for (const Patch& p : inner.patches) add_polygon(s, p.vertices, polygon_centroid(p.vertices), 2);  // outward
-  for (std::size_t f = 0; f < s.faces.size(); ++f) s.faces[f].group = f < outer_faces ? "outer" : "inner";
+  const Scene s = make_concentric_spheres(r1, r2, e1, e2);
   const SurfaceUnits units = group_units(s);
   const double a1 = units.area[1];
   const double true_a1 = 4 * std::numbers::pi * r1 * r1;

@@ -57,4 +57,19 @@ inline Scene make_cut_box(double a, double b, double c, int cuts, std::uint64_t 
 /// Options for exact-only matrices (no threshold, all threads).
 inline ViewFactorOptions plain_options() { return ViewFactorOptions{}; }
 
+/// Concentric faceted spheres (6 rings, 8 sectors each) as two groups: "outer" (radius r2, facing in,
+/// reflectance 1 - e2) and "inner" (radius r1, facing out, reflectance 1 - e1), the gray two-surface
+/// enclosure of the radiant-exchange tests.
+inline Scene make_concentric_spheres(double r1, double r2, double e1, double e2) {
+  Scene s = make_faceted_sphere(r2, 6, 8, material(Rgb::Constant(1 - e2), Rgb::Zero()),
+                                material(Rgb::Constant(1 - e2), Rgb::Zero()));
+  const Scene inner = make_faceted_sphere(r1, 6, 8, material(Rgb::Constant(1 - e1), Rgb::Zero()),
+                                          material(Rgb::Constant(1 - e1), Rgb::Zero()));
+  const std::size_t outer_faces = s.faces.size();
+  s.materials.push_back(material(Rgb::Constant(1 - e1), Rgb::Zero()));
+  for (const Patch& p : inner.patches) add_polygon(s, p.vertices, polygon_centroid(p.vertices), 2);  // outward
+  for (std::size_t f = 0; f < s.faces.size(); ++f) s.faces[f].group = f < outer_faces ? "outer" : "inner";
+  return s;
+}
+
 }  // namespace hrad::test
