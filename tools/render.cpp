@@ -185,7 +185,7 @@ void add_render_command(CLI::App& app) {
     LeafGatherOptions gather_options;
     gather_options.tolerance = args->gather_tolerance;
     gather_options.visibility_samples = args->visibility_samples;
-    gather_options.partial = PartialVisibility::shared;
+    gather_options.partial = PartialSampling::shared;
     gather_options.classify_points = false;
     gather_options.seed = args->seed;
     validate_leaf_gather_options(gather_options);

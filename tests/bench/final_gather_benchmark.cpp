@@ -72,7 +72,7 @@ std::vector<GatherPoint> surface_points(int per_patch) {
 LeafGatherOptions mode(int m) {
   LeafGatherOptions o;
   if (m == 0) {  // the image's
-    o.partial = PartialVisibility::shared;
+    o.partial = PartialSampling::shared;
     o.classify_points = false;
     o.visibility_samples = 32;
   } else if (m == 2) {  // leaf by leaf
@@ -130,7 +130,7 @@ void BM_LinkGatherPoints(benchmark::State& state) {
   LinkGatherOptions o;
   o.classify_points = state.range(2) != 0;
   o.visibility_samples = static_cast<int>(state.range(3));
-  o.partial = state.range(4) != 0 ? PartialVisibility::shared : PartialVisibility::per_node;
+  o.partial = state.range(4) != 0 ? PartialSampling::shared : PartialSampling::per_node;
   const LinkGather gather(cornell(), s.kept, o);
   const std::vector<GatherPoint> points = surface_points(static_cast<int>(state.range(1)));
   for (auto _ : state) benchmark::DoNotOptimize(gather.gather(points).data());
@@ -153,7 +153,7 @@ void BM_LinkGatherLeafFirst(benchmark::State& state) {
   LinkGatherOptions o;
   o.classify_points = true;
   o.visibility_samples = 64;
-  o.partial = PartialVisibility::per_node;
+  o.partial = PartialSampling::per_node;
   o.leaf_first_points = static_cast<int>(state.range(1));
   const LinkGather gather(cornell(), s.kept, o);
   const std::vector<GatherPoint> points = surface_points(static_cast<int>(state.range(0)));

@@ -37,7 +37,7 @@ Camera inside_camera(int w, int h) {
 
 LeafGatherOptions image_options() {
   LeafGatherOptions o;
-  o.partial = PartialVisibility::shared;
+  o.partial = PartialSampling::shared;
   o.classify_points = false;
   o.visibility_samples = 16;
   return o;

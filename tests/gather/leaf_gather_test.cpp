@@ -192,7 +192,7 @@ TEST(LeafGather, PartlyVisibleNodesAreSampledLeafByLeaf) {
   }
 }
 
-// The shared rays (PartialVisibility::shared, the image's estimator) are unbiased: over many
+// The shared rays (PartialSampling::shared, the image's estimator) are unbiased: over many
 // seeds their mean approaches the exact gather within a few standard errors, at a point whose
 // view of several patches is partly blocked.
 // Shared rays are allocated by systematic sampling: every entry gets the integer part of its
@@ -231,7 +231,7 @@ TEST(LeafGather, SharedRaysAreUnbiased) {
   o.visibility = VisibilityMode::exact;
   const double exact = LeafGather(box, leaves, o).gather(point)[0][0];
   o.visibility = VisibilityMode::sampled;
-  o.partial = PartialVisibility::shared;
+  o.partial = PartialSampling::shared;
   o.classify_points = false;
   o.visibility_samples = 8;
   double sum = 0.0, sum2 = 0.0;
@@ -253,7 +253,7 @@ TEST(LeafGather, SamePointSameValueInAnyBatch) {
   add_block(box, 1.0, 2.0, 0.0, 1.4, 1.5, 2.5, 0);
   const Solution leaves = leaves_with(box, 0.1, [](const Vec3& y, int) { return Rgb::Constant(1.0 + 0.3 * y.y()); });
   LeafGatherOptions o;
-  o.partial = PartialVisibility::shared;
+  o.partial = PartialSampling::shared;
   o.classify_points = false;
   const LeafGather gather(box, leaves, o);
   std::vector<GatherPoint> points;

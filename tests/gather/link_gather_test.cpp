@@ -157,7 +157,7 @@ TEST(LinkGather, CornellBoxAgreesWithTheAllPatchesGather) {
 
   EXPECT_GT(l2(h_all, h_all_2), 0.0);  // the visibility is sampled: the bound is not zero
   LinkGatherOptions per_source;
-  per_source.partial = PartialVisibility::per_node;
+  per_source.partial = PartialSampling::per_node;
   per_source.visibility_samples = 64;
   per_source.classify_points = true;
   for (const LinkGatherOptions& o : {LinkGatherOptions{}, per_source}) {
@@ -170,7 +170,7 @@ TEST(LinkGather, CornellBoxAgreesWithTheAllPatchesGather) {
     std::printf(
         "%s: link vs all-patches gather %.4g (seed to seed: all-patches %.4g, links %.4g); rays per point %.0f "
         "vs %.0f\n",
-        o.partial == PartialVisibility::shared ? "shared rays" : "per source", l2(h_links, h_all), l2(h_all, h_all_2),
+        o.partial == PartialSampling::shared ? "shared rays" : "per source", l2(h_links, h_all), l2(h_all, h_all_2),
         l2(h_links, h_links_2), double(links.work().rays) / points.size(), double(all.work().rays) / points.size());
     EXPECT_LE(l2(h_links, h_all), noise);
   }
@@ -232,7 +232,7 @@ TEST(LinkGather, ClassifyingFromTheLeafFirstOrNotGivesTheSameValues) {
   LinkGatherOptions leaf_first, point_first;
   leaf_first.classify_points = point_first.classify_points = true;
   leaf_first.visibility_samples = point_first.visibility_samples = 64;
-  leaf_first.partial = point_first.partial = PartialVisibility::per_node;
+  leaf_first.partial = point_first.partial = PartialSampling::per_node;
   leaf_first.leaf_first_points = 1;
   point_first.leaf_first_points = std::numeric_limits<int>::max();
   const LinkGather a(cornell(), kept, leaf_first), b(cornell(), kept, point_first);
@@ -240,7 +240,7 @@ TEST(LinkGather, ClassifyingFromTheLeafFirstOrNotGivesTheSameValues) {
   LinkGatherOptions defaults_classified;
   defaults_classified.classify_points = true;
   defaults_classified.visibility_samples = 64;
-  defaults_classified.partial = PartialVisibility::per_node;
+  defaults_classified.partial = PartialSampling::per_node;
   const LinkGather one(cornell(), kept, defaults_classified);
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Rgb single = one.gather(std::span<const GatherPoint>(&points[i], 1))[0];

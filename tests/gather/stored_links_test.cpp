@@ -140,7 +140,7 @@ TEST(StoredLinks, RenderAndProbesThroughTheFileAgreeWithTheAllPatchesGather) {
   };
   // The image: hrad render's options (32 rays a point shared by its partly visible sources).
   LeafGatherOptions image_all;
-  image_all.partial = PartialVisibility::shared;
+  image_all.partial = PartialSampling::shared;
   image_all.visibility_samples = 32;
   image_all.classify_points = false;
   RenderOptions ro;

@@ -20,7 +20,7 @@ namespace {
 
 using test::make_scene;
 
-constexpr double kTol = 1e-9;
+constexpr double kLeafTol = 1e-9;
 
 // The distinct positions of `points` on the boundary of `polygon` (corners included), in order
 // along the boundary from corner 0.
@@ -33,8 +33,8 @@ std::vector<Vec3> boundary_points(const std::vector<Vec3>& points, std::span<con
     const double len = d.norm();
     for (const Vec3& p : points) {
       const double t = (p - a).dot(d) / (len * len);
-      if (t * len < -kTol || t * len >= len - kTol || (a + t * d - p).norm() > kTol) continue;
-      if (std::none_of(found.begin(), found.end(), [&](const auto& q) { return (q.second - p).norm() <= kTol; }))
+      if (t * len < -kLeafTol || t * len >= len - kLeafTol || (a + t * d - p).norm() > kLeafTol) continue;
+      if (std::none_of(found.begin(), found.end(), [&](const auto& q) { return (q.second - p).norm() <= kLeafTol; }))
         found.emplace_back(static_cast<double>(k) + std::max(t, 0.0), p);
     }
   }

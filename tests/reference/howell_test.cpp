@@ -15,12 +15,12 @@
 namespace hrad::test {
 namespace {
 
-const Rgb kEmission(3.0, 2.0, 1.0);
+const Rgb kHowellEmission(3.0, 2.0, 1.0);
 
 // The emitter [0, a] x [0, b] in the plane z = 0, its front facing +z; nothing else.
 Scene emitter_rectangle(double a, double b) {
   Scene s;
-  s.materials = {material(Rgb::Zero(), kEmission)};
+  s.materials = {material(Rgb::Zero(), kHowellEmission)};
   add_polygon(s, {{0, 0, 0}, {a, 0, 0}, {a, b, 0}, {0, b, 0}}, Vec3::UnitZ(), 0);
   return s;
 }
@@ -46,20 +46,20 @@ TEST(ReferenceHowell, ProbeParallelToARectangleSeesEmissionTimesB3) {
   for (double c : {0.05, 0.9, 4.0}) {
     // Under a corner: B-3 itself.
     PointEstimate e = probe(scene, {0, 0, c}, -Vec3::UnitZ());
-    expect_agrees(e.irradiance, e.irradiance_se, kEmission * howell_b3(a, b, c), 0.015,
+    expect_agrees(e.irradiance, e.irradiance_se, kHowellEmission * howell_b3(a, b, c), 0.015,
                   "corner, c " + std::to_string(c));
     // Under an inner point: four rectangles meeting there.
     const double x = 0.2, y = 0.9;
     const double inner =
         howell_b3(x, y, c) + howell_b3(a - x, y, c) + howell_b3(x, b - y, c) + howell_b3(a - x, b - y, c);
     e = probe(scene, {x, y, c}, -Vec3::UnitZ());
-    expect_agrees(e.irradiance, e.irradiance_se, kEmission * inner, 0.01, "inner, c " + std::to_string(c));
+    expect_agrees(e.irradiance, e.irradiance_se, kHowellEmission * inner, 0.01, "inner, c " + std::to_string(c));
     // Beside the rectangle (x = -0.4): the rectangle [-0.4, a] minus [-0.4, 0], both halves in y.
     const double d = 0.4, y2 = 0.5;
     const double outside =
         howell_b3(a + d, y2, c) - howell_b3(d, y2, c) + howell_b3(a + d, b - y2, c) - howell_b3(d, b - y2, c);
     e = probe(scene, {-d, y2, c}, -Vec3::UnitZ());
-    expect_agrees(e.irradiance, e.irradiance_se, kEmission * outside, 0.015, "beside, c " + std::to_string(c));
+    expect_agrees(e.irradiance, e.irradiance_se, kHowellEmission * outside, 0.015, "beside, c " + std::to_string(c));
   }
 }
 
@@ -68,10 +68,10 @@ TEST(ReferenceHowell, ProbeParallelToARectangleSeesEmissionTimesB3) {
 TEST(ReferenceHowell, ProbePerpendicularToARectangleSeesEmissionTimesItsFactor) {
   for (const auto& [a, b, c] : {std::tuple{1.0, 0.5, 0.3}, std::tuple{0.4, 2.0, 1.5}}) {
     Scene s;
-    s.materials = {material(Rgb::Zero(), kEmission)};
+    s.materials = {material(Rgb::Zero(), kHowellEmission)};
     add_polygon(s, {{0, 0, c}, {b, 0, c}, {b, a, c}, {0, a, c}}, -Vec3::UnitZ(), 0);
     const PointEstimate e = probe(s, Vec3::Zero(), Vec3::UnitX());
-    expect_agrees(e.irradiance, e.irradiance_se, kEmission * howell_perpendicular_element(a, b, c), 0.012,
+    expect_agrees(e.irradiance, e.irradiance_se, kHowellEmission * howell_perpendicular_element(a, b, c), 0.012,
                   "perpendicular");
   }
 }

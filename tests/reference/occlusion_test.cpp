@@ -23,12 +23,12 @@ namespace hrad::test {
 namespace {
 
 constexpr double kL = 1.0, kH = 0.8, kBarrier = 1.0, kS = 0.5;
-const Rgb kEmission(2.0, 1.0, 0.5);
+const Rgb kOcclusionEmission(2.0, 1.0, 0.5);
 const Rgb kRho(0.6, 0.3, 0.9);
 
 Scene barrier_scene(bool with_barrier) {
   Scene s;
-  s.materials = {material(Rgb::Zero(), kEmission, "light"), material(kRho, Rgb::Zero(), "receiver"),
+  s.materials = {material(Rgb::Zero(), kOcclusionEmission, "light"), material(kRho, Rgb::Zero(), "receiver"),
                  material(Rgb::Zero(), Rgb::Zero(), "black")};
   add_polygon(s, {{0, 0, 0}, {1, 0, 0}, {1, kL, 0}, {0, kL, 0}}, Vec3::UnitZ(), 0);
   add_polygon(s, {{0, 0, 0}, {0, kL, 0}, {0, kL, kH}, {0, 0, kH}}, Vec3::UnitX(), 1);
@@ -60,11 +60,11 @@ TEST(ReferenceOcclusion, PointsBehindABarrierSeeOnlyTheNearHalfOnce) {
       const auto [y, z] = yz[i];
       const double near = point_factor(y, z, kS), whole = point_factor(y, z, 1.0);
       ASSERT_EQ(out[i].patch, 1);
-      const Rgb expected = kRho * kEmission * (barrier ? near : whole);
+      const Rgb expected = kRho * kOcclusionEmission * (barrier ? near : whole);
       expect_agrees(out[i].radiosity, out[i].radiosity_se, expected, 0.012,
                     (barrier ? "barrier, point " : "no barrier, point ") + std::to_string(i));
       // The barrier's share is far outside the noise: the test would see it missing.
-      EXPECT_GT(kEmission[0] * (whole - near), 10 * out[i].irradiance_se[0]);
+      EXPECT_GT(kOcclusionEmission[0] * (whole - near), 10 * out[i].irradiance_se[0]);
     }
   }
 }
@@ -78,10 +78,10 @@ TEST(ReferenceOcclusion, FaceMeanBehindABarrierIsRhoETimesTheNearFactor) {
     const Scene scene = barrier_scene(barrier);
     std::vector<FaceEstimate> out;
     reference_faces(scene, o, &out);
-    const Rgb expected = kRho * kEmission * face_factor(barrier ? kS : 1.0);
+    const Rgb expected = kRho * kOcclusionEmission * face_factor(barrier ? kS : 1.0);
     expect_agrees(out[1].radiosity, out[1].radiosity_se, expected, 0.008, barrier ? "barrier" : "no barrier");
     // The emitter and the barrier reflect nothing: their emission, exactly.
-    EXPECT_TRUE((out[0].radiosity == kEmission).all());
+    EXPECT_TRUE((out[0].radiosity == kOcclusionEmission).all());
     EXPECT_EQ(out[0].radiosity_se.maxCoeff(), 0.0);
     if (barrier) EXPECT_EQ(out[2].radiosity.maxCoeff(), 0.0);
   }

@@ -17,7 +17,7 @@ std::vector<Rgb> final_gather_reflected(const Scene& scene, const Solution& solu
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, options.threads);
   LeafGatherOptions o;
   o.tolerance = options.tolerance;
-  o.partial = PartialVisibility::per_node;
+  o.partial = PartialSampling::per_node;
   o.visibility_samples = options.visibility_samples;
   o.classify_points = true;
   std::unique_ptr<FinalGather> gather;

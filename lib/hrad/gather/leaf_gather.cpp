@@ -39,8 +39,6 @@ namespace {
 // not pay (final_gather_benchmark, BM_LeafFactors).
 constexpr double kFactorTolerance = kLambertSumOnly;
 
-bool is_blocking(PairClass c) { return c == PairClass::kFacingAway || c == PairClass::kFullyHidden; }
-
 }  // namespace
 
 struct LeafGather::Scratch {
@@ -48,7 +46,7 @@ struct LeafGather::Scratch {
   // at most detail::kLeafQuadtreeMaxDepth + 1 nodes deep.
   std::vector<std::vector<int>> occluders = std::vector<std::vector<int>>(detail::kLeafQuadtreeMaxDepth + 2);
   std::vector<Vec2> uv;
-  // PartialVisibility::shared: the partly visible nodes gathered at this point.
+  // PartialSampling::shared: the partly visible nodes gathered at this point.
   struct Partial {
     int node = -1, patch = -1;
     double factor = 0.0, importance = 0.0;
@@ -104,7 +102,7 @@ Rgb LeafGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w, do
   const Vec3& n = p.normal;
   const std::uint64_t seed = detail::point_seed(p, options_.seed);
   const bool sampled = options_.visibility == VisibilityMode::sampled;
-  const bool shared = sampled && options_.partial == PartialVisibility::shared;
+  const bool shared = sampled && options_.partial == PartialSampling::shared;
   const double tolerance = options_.tolerance * mean_radiosity_;
   Rgb h = Rgb::Zero();
   s.partial.clear();

@@ -28,14 +28,14 @@
 // its sampling error to both. gather_with_bounds() returns the bound each point reached.
 //
 // Partly visible nodes (neither classification settled them) are sampled:
-//   * PartialVisibility::per_node: `visibility_samples` stratified points on the node, the
+//   * PartialSampling::per_node: `visibility_samples` stratified points on the node, the
 //     visible fraction weighted by the kernel (Wallace, Elmquist & Haines 1989). A partly visible
 //     node that is not a leaf is opened (its children classified from x where classify_points),
 //     however uniform its radiosity: k points over a whole uniform light resolve a shadow edge
 //     across it far more coarsely than k points on each of its leaves, and the grouping's bound
 //     speaks of the radiosity only. So per node the sampled gather is the leaf-by-leaf one, wherever
 //     visibility is partial;
-//   * PartialVisibility::shared: `visibility_samples` rays per point shared by all partly visible
+//   * PartialSampling::shared: `visibility_samples` rays per point shared by all partly visible
 //     nodes, node i drawn with probability proportional to its unoccluded contribution
 //     c_i = F_i B_i (systematic sampling over their cumulative sum, so node i gets the integer
 //     part of its expected count or one more) and a uniform point y on it; each ray adds
@@ -62,7 +62,7 @@
 
 namespace hrad {
 
-enum class PartialVisibility { per_node, shared };
+enum class PartialSampling { per_node, shared };
 enum class VisibilityMode { sampled, exact };
 
 struct LeafGatherOptions {
@@ -71,7 +71,7 @@ struct LeafGatherOptions {
   /// node's leaves largely cancel); larger values group more (final_gather_benchmark measures the
   /// factors per point at each setting).
   double tolerance = 1e-2;
-  PartialVisibility partial = PartialVisibility::per_node;
+  PartialSampling partial = PartialSampling::per_node;
   /// Points per partly visible node (per_node) or rays per point (shared).
   int visibility_samples = 64;
   /// Classify each point against each partly visible patch, and each partly visible node before

@@ -47,7 +47,7 @@ struct LinkGather::Scratch {
   std::vector<std::size_t> path;
   std::vector<int> occluders;
   std::vector<Vec2> uv;
-  // A point's partly visible sources when their rays are shared (PartialVisibility::shared).
+  // A point's partly visible sources when their rays are shared (PartialSampling::shared).
   struct Partial {
     NodeId node = kNoNode;
     double factor = 0.0;
@@ -67,8 +67,6 @@ namespace {
 
 // A patch of a cluster end that sees nothing of the other end (Link::hidden_p).
 bool listed(const ShadedPatches* list, int patch) { return !(visible_share(list, patch) > 0.0); }
-
-bool is_blocking(PairClass c) { return c == PairClass::kFacingAway || c == PairClass::kFullyHidden; }
 
 // How far x lies inside the convex polygon (normal n, counter-clockwise seen from its front): the
 // smallest signed distance to its edges' lines, positive inside.
@@ -342,7 +340,7 @@ Rgb LinkGather::gather_point(const GatherPoint& p, Scratch& s, GatherWork& w) co
       return;
     }
     // Partly visible from x's leaf (and from x when classified): only `occluders` can block.
-    if (options_.partial == PartialVisibility::shared) {
+    if (options_.partial == PartialSampling::shared) {
       const double importance = f * node.radiosity.sum();
       if (!(importance > 0.0)) return;
       s.partial.push_back({id, f, s.partial_occluders.size(), occluders ? occluders->size() : 0});
@@ -493,7 +491,7 @@ std::vector<Rgb> LinkGather::gather(std::span<const GatherPoint> points, Progres
           scratch.leaf = leaf;
           ++scratch.group;
           scratch.from_leaf =
-              !options_.classify_points || options_.partial != PartialVisibility::per_node ||
+              !options_.classify_points || options_.partial != PartialSampling::per_node ||
               groups[g + 1] - groups[g] >= static_cast<std::size_t>(std::max(1, options_.leaf_first_points));
           for (std::size_t j = groups[g]; j != groups[g + 1]; ++j) {
             out[order[j].second] = gather_point(points[order[j].second], scratch, local);

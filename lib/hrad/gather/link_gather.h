@@ -20,7 +20,7 @@
 // classified from the leaf among its parent's occluders, and a leaf still partly visible is sampled
 // from x among those occluders: by default with rays shared by all of x's partly visible sources,
 // each source's share proportional to its unoccluded contribution F(x -> N) B_N (systematic
-// sampling; PartialVisibility::shared, as leaf_gather.h), or with `visibility_samples` stratified
+// sampling; PartialSampling::shared, as leaf_gather.h), or with `visibility_samples` stratified
 // points on each (per_node), the kernel-weighted visible fraction multiplying the factor.
 // classify_points adds a shaft test from x itself before sampling (no ray where x sees all or none
 // of the source): ~15 rays' cost per test, for less noise per ray. With `visibility_samples` points
@@ -86,7 +86,7 @@ struct LinkGatherOptions {
   /// per_node: `visibility_samples` stratified points on each partly visible source; shared:
   /// `visibility_samples` rays per point over all of them, each source's share proportional to its
   /// unoccluded contribution (as LeafGatherOptions::partial).
-  PartialVisibility partial = PartialVisibility::shared;
+  PartialSampling partial = PartialSampling::shared;
   /// Stratified points per partly visible source, or rays per point (see `partial`). Shared, 512
   /// keep the Cornell box's default solve as close to the sweep's reference as 64 points a source
   /// (~3100 rays a point) do (README, "Gathering through the links").

@@ -16,6 +16,9 @@ namespace hrad {
 /// How a pair of polygons sees each other, decided before any ray is cast.
 enum class PairClass { kFacingAway, kFullyVisible, kFullyHidden, kPartial };
 
+/// Whether no light passes between the pair: facing away or fully hidden.
+inline bool is_blocking(PairClass c) { return c == PairClass::kFacingAway || c == PairClass::kFullyHidden; }
+
 /// Whether light passes between a point of one patch and a point of another (Visibility::sight()).
 enum class Sight {
   kFacingAway,  ///< a point is off its patch, or not strictly in front of the other's patch there
