@@ -14,8 +14,6 @@
 namespace hrad::test {
 namespace {
 
-double black(double t) { return kStefanBoltzmann * t * t * t * t; }
-
 // Two plates L x L at distance d (floor and ceiling of a box) at T1, T2, the four side walls one
 // reradiating surface (net flux 0). The three-surface network (Siegel & Howell, "Thermal Radiation
 // Heat Transfer", sec. 6.3; Incropera & DeWitt eq. 13.30):

@@ -27,8 +27,6 @@
 namespace hrad::test {
 namespace {
 
-double black(double t) { return kStefanBoltzmann * t * t * t * t; }
-
 constexpr Method kMethods[] = {Method::kFull, Method::kSubstructure, Method::kHierarchical};
 
 // One element per input face: nothing is subdivided and hierarchical links join whole faces.

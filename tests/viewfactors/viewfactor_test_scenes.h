@@ -7,6 +7,7 @@
 
 #include "../solvers/solver_test_scenes.h"
 #include "hrad/core/rng.h"
+#include "hrad/viewfactors/radiant_exchange.h"
 #include "hrad/viewfactors/view_factor_matrix.h"
 
 namespace hrad::test {
@@ -71,5 +72,8 @@ inline Scene make_concentric_spheres(double r1, double r2, double e1, double e2)
   for (std::size_t f = 0; f < s.faces.size(); ++f) s.faces[f].group = f < outer_faces ? "outer" : "inner";
   return s;
 }
+
+// Black-body emissive power sigma T^4 (Stefan-Boltzmann law), W/m^2 at temperature t in K.
+inline double black(double t) { return kStefanBoltzmann * t * t * t * t; }
 
 }  // namespace hrad::test
