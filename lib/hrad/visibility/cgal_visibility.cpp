@@ -758,16 +758,20 @@ Sight CgalVisibility::sight_of(const Vec3& a, int patch_a, const Vec3& b, int pa
 class ShaftPlanes {
  public:
   template <class Ops>
-  ShaftPlanes(std::span<const Facet<Ops>> facets, double scene_magnitude) {
+  ShaftPlanes(std::span<const Facet<Ops>> facets, double scene_magnitude) : magnitude_(scene_magnitude) {
     for (const Facet<Ops>& f : facets) {
       const Vec3 p = Ops::approx(f.p);
       const Vec3 u = Ops::approx(f.q) - p, v = Ops::approx(f.r) - p;
       const Vec3 n = u.cross(v);  // CGAL::orientation(p, q, r, x) is the sign of n . (x - p)
-      // |n . (x - p)| <= |u| |v| |x - p| with |x - p| <= 2 (scene magnitude) for x in the scene;
-      // the slack is 2^-30 of that bound, the arithmetic's error a few 2^-52.
-      const double bound = u.cwiseAbs().sum() * v.cwiseAbs().sum() * 4.0 * scene_magnitude;
-      planes_.push_back({n, n.dot(p), std::ldexp(bound, -30) + std::numeric_limits<double>::min()});
+      planes_.push_back({n, n.dot(p), slack(u, v)});
     }
+  }
+  /// The slack of the plane spanned by edges u and v: |n . (x - p)| <= |u| |v| |x - p| with
+  /// |x - p| <= 2 (scene magnitude) for x in the scene; the slack is 2^-30 of that bound, the
+  /// arithmetic's error a few 2^-52.
+  double slack(const Vec3& u, const Vec3& v) const {
+    return std::ldexp(u.cwiseAbs().sum() * v.cwiseAbs().sum() * 4.0 * magnitude_, -30) +
+           std::numeric_limits<double>::min();
   }
   /// True only when the box lies strictly outside the shaft: every one of its points on the
   /// negative side of some plane.
@@ -779,6 +783,13 @@ class ShaftPlanes {
     }
     return false;
   }
+  /// The side of x of facet plane k where the double arithmetic settles it beyond the slack
+  /// (+1 or -1), else 0: then only the exact predicate can tell.
+  int sign(std::size_t k, const Vec3& x) const {
+    const Plane& pl = planes_[k];
+    const double s = pl.normal.dot(x) - pl.offset;
+    return s > pl.slack ? 1 : s < -pl.slack ? -1 : 0;
+  }
 
  private:
   struct Plane {
@@ -786,6 +797,7 @@ class ShaftPlanes {
     double offset, slack;
   };
   std::vector<Plane> planes_;
+  double magnitude_;
 };
 
 // Decides, triangle by triangle, which patches may meet the shaft's interior and records them in
@@ -799,20 +811,24 @@ class ShaftTest {
  public:
   ShaftTest(const std::vector<Triangle>& triangles, const TriangleOf& triangle_of, const std::vector<int>& patch_of,
             const std::vector<int>& plane_of, std::array<int, 2> end_planes, std::span<const Facet<Ops>> facets,
-            std::span<const typename Ops::P> shaft_points, std::span<const std::pair<Point, Point>> probes,
-            bool exact_contacts, int patch_a, int patch_b, std::vector<int>* hits)
+            const ShaftPlanes& planes, std::span<const typename Ops::P> shaft_points,
+            std::span<const std::pair<Point, Point>> probes, bool exact_contacts, int patch_a, int patch_b,
+            std::vector<int>* hits)
       : triangles_(triangles),
         triangle_of_(triangle_of),
         patch_of_(patch_of),
         plane_of_(plane_of),
         end_planes_(end_planes),
         facets_(facets),
+        planes_(planes),
         pts_(shaft_points),
         probes_(probes),
         exact_contacts_(exact_contacts),
         pa_(patch_a),
         pb_(patch_b),
-        hits_(hits) {}
+        hits_(hits) {
+    for (const auto& p : pts_) approx_.push_back(Ops::approx(p));
+  }
   void operator()(std::size_t index) {
     const int patch = patch_of_[index];
     if (patch == pa_ || patch == pb_) return;
@@ -821,20 +837,16 @@ class ShaftTest {
     if (plane_of_[index] == end_planes_[0] || plane_of_[index] == end_planes_[1]) return;
     if (!hits_->empty() && hits_->back() == patch) return;  // the patch's other triangle: already a hit
     const typename Ops::Tri t = triangle_of_(index);
-    for (const Facet<Ops>& f : facets_)
-      if (f.side(t[0]) != CGAL::POSITIVE && f.side(t[1]) != CGAL::POSITIVE && f.side(t[2]) != CGAL::POSITIVE)
+    const std::array<Vec3, 3> tv{Ops::approx(t[0]), Ops::approx(t[1]), Ops::approx(t[2])};
+    for (std::size_t f = 0; f < facets_.size(); ++f)
+      if (side(f, t[0], tv[0]) != CGAL::POSITIVE && side(f, t[1], tv[1]) != CGAL::POSITIVE &&
+          side(f, t[2], tv[2]) != CGAL::POSITIVE)
         return;  // a facet plane weakly separates t from the shaft
-    bool pos = false, neg = false;
-    for (const auto& p : pts_) {
-      const CGAL::Orientation o = Ops::orient(t[0], t[1], t[2], p);
-      pos |= o == CGAL::POSITIVE;
-      neg |= o == CGAL::NEGATIVE;
-    }
-    if (!(pos && neg)) return;  // t's plane weakly separates the shaft from t
+    if (!straddles(t, tv)) return;  // t's plane weakly separates the shaft from t
     if constexpr (std::is_same_v<Ops, DoubleOps>) {
       bool inside = true;
-      for (const Facet<Ops>& f : facets_)
-        for (int k = 0; k < 3 && inside; ++k) inside = f.side(t[k]) == CGAL::POSITIVE;
+      for (std::size_t f = 0; f < facets_.size() && inside; ++f)
+        for (int k = 0; k < 3 && inside; ++k) inside = side(f, t[k], tv[k]) == CGAL::POSITIVE;
       if (!inside && exact_contacts_ && !probe_segment_hits(t) && !clipped_probe_hits(t) && !meets_interior_exactly(t))
         return;  // touches only
     }
@@ -842,6 +854,29 @@ class ShaftTest {
   }
 
  private:
+  /// Facet f's side of x (approximated by xv): the double plane where its slack settles it, the
+  /// exact predicate where it cannot. Both give the same answer wherever the first answers.
+  CGAL::Orientation side(std::size_t f, const typename Ops::P& x, const Vec3& xv) const {
+    const int s = planes_.sign(f, xv);
+    return s != 0 ? static_cast<CGAL::Orientation>(s) : facets_[f].side(x);
+  }
+  /// True iff the shaft's points lie strictly on both sides of t's plane; as side(), the double
+  /// plane first, the exact orientation only for points within its slack.
+  bool straddles(const typename Ops::Tri& t, const std::array<Vec3, 3>& tv) const {
+    const Vec3 u = tv[1] - tv[0], v = tv[2] - tv[0];
+    const Vec3 n = u.cross(v);
+    const double slack = planes_.slack(u, v);
+    bool pos = false, neg = false;
+    for (std::size_t i = 0; i < pts_.size() && !(pos && neg); ++i) {
+      const double s = n.dot(approx_[i] - tv[0]);
+      const CGAL::Orientation o = s > slack    ? CGAL::POSITIVE
+                                  : s < -slack ? CGAL::NEGATIVE
+                                               : Ops::orient(t[0], t[1], t[2], pts_[i]);
+      pos |= o == CGAL::POSITIVE;
+      neg |= o == CGAL::NEGATIVE;
+    }
+    return pos && neg;
+  }
   /// Sufficient and exact: some probe segment whose ends lie strictly inside the shaft crosses t
   /// (its ends strictly on both sides of t's plane, the crossing in closed t), so t meets the
   /// interior. The probes are rounded points near the shaft's vertex pairs; a probe end that is
@@ -905,7 +940,9 @@ class ShaftTest {
   const std::vector<int>& plane_of_;
   std::array<int, 2> end_planes_;
   std::span<const Facet<Ops>> facets_;
+  const ShaftPlanes& planes_;
   std::span<const typename Ops::P> pts_;
+  std::vector<Vec3> approx_;  // pts_ in doubles
   std::span<const std::pair<Point, Point>> probes_;
   bool exact_contacts_;
   int pa_, pb_;
@@ -1018,10 +1055,11 @@ PairClass CgalVisibility::classify_points(std::span<const typename Ops::P> a, in
     const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
     return begin < end ? triangle_plane_[static_cast<std::size_t>(begin)] : -2;
   };
-  ShaftTest<Ops, decltype(triangle_of)> test(triangles_, triangle_of, triangle_patch_, triangle_plane_,
-                                             {end_plane(patch_a, a.size()), end_plane(patch_b, b.size())}, facets, pts,
-                                             probes, options_.exact_shaft_contacts, patch_a, patch_b, &hits);
   const ShaftPlanes planes(std::span<const Facet<Ops>>(facets), magnitude_);
+  ShaftTest<Ops, decltype(triangle_of)> test(triangles_, triangle_of, triangle_patch_, triangle_plane_,
+                                             {end_plane(patch_a, a.size()), end_plane(patch_b, b.size())}, facets,
+                                             planes, pts, probes, options_.exact_shaft_contacts, patch_a, patch_b,
+                                             &hits);
   if (candidates == nullptr) {
     ShaftTraversal traversal(triangles_, triangle_boxes_, planes, test);
     if (!triangles_.empty()) tree_.traversal(box, traversal);
