@@ -46,6 +46,15 @@ double polygon_diameter(std::span<const Vec3> p) {
   return d;
 }
 
+std::pair<Vec3, double> vertex_sphere(std::span<const Vec3> p) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& v : p) c += v;
+  c /= static_cast<double>(p.size());
+  double r2 = 0.0;
+  for (const Vec3& v : p) r2 = std::max(r2, (v - c).squaredNorm());
+  return {c, std::sqrt(r2)};
+}
+
 bool is_convex(std::span<const Vec3> p, const Vec3& n) {
   const std::size_t k = p.size();
   for (std::size_t i = 0; i < k; ++i) {

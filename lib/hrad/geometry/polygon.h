@@ -4,6 +4,7 @@
 
 #include <array>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "hrad/core/types.h"
@@ -26,6 +27,9 @@ double planarity_deviation(std::span<const Vec3> polygon, const Vec3& unit_norma
 
 /// Largest distance between two vertices.
 double polygon_diameter(std::span<const Vec3> polygon);
+
+/// The mean of the vertices and the largest distance from it: a bounding sphere (not the smallest).
+std::pair<Vec3, double> vertex_sphere(std::span<const Vec3> polygon);
 
 /// True if the planar polygon is strictly convex (no reflex vertex) seen along `unit_normal`.
 /// Collinear consecutive vertices count as convex.

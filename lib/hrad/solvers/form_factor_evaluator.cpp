@@ -4,6 +4,7 @@
 #include <bit>
 #include <cassert>
 #include <cmath>
+#include <mutex>
 #include <numbers>
 #include <optional>
 #include <vector>
@@ -17,6 +18,8 @@
 #include "hrad/solvers/cluster_tree.h"
 #include "hrad/visibility/sampling.h"
 #include "hrad/visibility/visibility.h"
+
+#include <tbb/parallel_for.h>
 
 namespace hrad {
 namespace {
@@ -39,19 +42,14 @@ void front_part(std::span<const Vec3> poly, std::span<const Vec3> other, std::ve
   detail::clip_to_half_space(poly, height, out);
 }
 
+// Heights below this fraction of a patch's diameter are contact (rounding of touching vertices).
+constexpr double kContactTolerance = 1e-9;
+
 }  // namespace
 
 bool FormFactorEvaluator::separated(std::span<const Vec3> receiver, std::span<const Vec3> source, double ratio) {
-  auto sphere = [](std::span<const Vec3> p) {
-    Vec3 c = Vec3::Zero();
-    for (const Vec3& v : p) c += v;
-    c /= static_cast<double>(p.size());
-    double r2 = 0.0;
-    for (const Vec3& v : p) r2 = std::max(r2, (v - c).squaredNorm());
-    return std::pair<Vec3, double>(c, std::sqrt(r2));
-  };
-  const auto [rc, rr] = sphere(receiver);
-  const auto [sc, sr] = sphere(source);
+  const auto [rc, rr] = vertex_sphere(receiver);
+  const auto [sc, sr] = vertex_sphere(source);
   const double gap = (rc - sc).norm() - rr - sr;
   return gap > 0.0 && 2.0 * rr <= ratio * gap;
 }
@@ -68,7 +66,8 @@ FormFactorEvaluator::FormFactorEvaluator(const Scene& scene, const Effects& effe
 }
 
 FormFactorEstimate FormFactorEvaluator::estimate(std::span<const Vec3> receiver, int receiver_patch,
-                                                 std::span<const Vec3> source, int source_patch) const {
+                                                 std::span<const Vec3> source, int source_patch,
+                                                 bool with_reverse) const {
   FormFactorEstimate e;
   // Two elements of one planar patch never exchange light.
   if (receiver_patch == source_patch) return e;
@@ -94,14 +93,14 @@ FormFactorEstimate FormFactorEvaluator::estimate(std::span<const Vec3> receiver,
       e.visibility = fraction;
       e.error = error;
     }
-    const PairFormFactor f = unoccluded(receiver, source);
+    const PairFormFactor f = unoccluded(receiver, receiver_patch, source, source_patch, with_reverse);
     e.unoccluded = f.from_to;
     e.value = f.from_to * e.visibility;
     e.reverse = f.to_from * e.visibility;
     e.error *= f.from_to;
     return e;
   }
-  const PairFormFactor f = unoccluded(receiver, source);
+  const PairFormFactor f = unoccluded(receiver, receiver_patch, source, source_patch, with_reverse);
   e.unoccluded = e.value = f.from_to;
   e.reverse = f.to_from;
   return e;
@@ -371,12 +370,76 @@ Work FormFactorEvaluator::work() const {
   return w;
 }
 
-PairFormFactor FormFactorEvaluator::unoccluded(std::span<const Vec3> receiver, std::span<const Vec3> source) const {
+void FormFactorEvaluator::set_sources(std::span<const std::span<const Vec3>> polygons, std::span<const int> patches) {
+  sources_by_patch_.assign(scene_.patches.size(), {});
+  for (std::size_t k = 0; k < polygons.size(); ++k)
+    sources_by_patch_[static_cast<std::size_t>(patches[k])].emplace_back(polygons[k].begin(), polygons[k].end());
+}
+
+const std::vector<NearEdge>& FormFactorEvaluator::floating_edges(int patch) const {
+  std::call_once(floating_once_, [this] {
+    const std::size_t n = scene_.patches.size();
+    if (sources_by_patch_.size() != n) {  // no mesh given: the patches themselves
+      sources_by_patch_.assign(n, {});
+      for (std::size_t i = 0; i < n; ++i) sources_by_patch_[i].push_back(scene_.patches[i].vertices);
+    }
+    // A cell is never larger than the largest polygon on its patch.
+    std::vector<std::pair<Vec3, double>> spheres(n);
+    std::vector<double> largest(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      spheres[i] = vertex_sphere(scene_.patches[i].vertices);
+      for (const auto& poly : sources_by_patch_[i]) largest[i] = std::max(largest[i], vertex_sphere(poly).second);
+    }
+    floating_edges_.assign(n, {});
+    // Patch Q floats in front of patch P when every vertex of Q lies strictly in front of P's plane
+    // and P is not wholly behind Q's (they can exchange light). A cell on P lies within P's bounding
+    // sphere and is cut only by an edge through its own: an edge higher over P's plane than P's
+    // largest polygon, or farther from P's centre than 3 of P's radii, never cuts one.
+    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+      const Patch& p = scene_.patches[i];
+      const auto [cp, rp] = spheres[i];
+      const double contact = kContactTolerance * 2.0 * rp;
+      auto height = [&](const Vec3& v) { return (v - p.vertices[0]).dot(p.normal); };
+      for (std::size_t j = 0; j < n; ++j) {
+        const auto [cq, rq] = spheres[j];
+        if (j == i || (cp - cq).norm() - rq > 3.0 * rp) continue;
+        const Patch& q = scene_.patches[j];
+        bool floats = true, sees = false;
+        for (const Vec3& v : q.vertices) floats = floats && height(v) > contact;
+        for (const Vec3& v : p.vertices) sees = sees || (v - q.vertices[0]).dot(q.normal) > contact;
+        if (!floats || !sees) continue;
+        for (const auto& poly : sources_by_patch_[j])
+          for (std::size_t k = 0; k < poly.size(); ++k) {
+            const NearEdge e{poly[k], poly[(k + 1) % poly.size()]};
+            if (std::min(height(e.a), height(e.b)) < largest[i] && e.distance(cp) < 3.0 * rp)
+              floating_edges_[i].push_back(e);
+          }
+      }
+    });
+  });
+  return floating_edges_[static_cast<std::size_t>(patch)];
+}
+
+double FormFactorEvaluator::contour_factor(std::span<const Vec3> receiver, int receiver_patch,
+                                           std::span<const Vec3> source, int* points) const {
+  // The floating edges near enough to this receiver to cut one of its cells (a cell lies within the
+  // receiver, is no larger, and is cut only by an edge through its own sphere).
+  thread_local std::vector<NearEdge> near;
+  near.clear();
+  const auto [c, r] = vertex_sphere(receiver);
+  for (const NearEdge& e : floating_edges(receiver_patch))
+    if (e.distance(c) < 3.0 * r) near.push_back(e);
+  return receiver_gauss_factor(receiver, source, near, kLambertSumOnly, points);
+}
+
+PairFormFactor FormFactorEvaluator::unoccluded(std::span<const Vec3> receiver, int receiver_patch,
+                                               std::span<const Vec3> source, int source_patch,
+                                               bool with_reverse) const {
   if (kernel_ == FormFactorKernel::kAnalytic) return analytic(receiver, source);
   evaluations_.fetch_add(1, std::memory_order_relaxed);
   int points_r = 0, points_s = 0;
-  const PairFormFactor f{receiver_gauss_factor(receiver, source, kLambertSumOnly, &points_r),
-                         receiver_gauss_factor(source, receiver, kLambertSumOnly, &points_s)};
+  const PairFormFactor f{contour_factor(receiver, receiver_patch, source, &points_r),
+                         with_reverse ? contour_factor(source, source_patch, receiver, &points_s) : 0.0};
   point_factors_.fetch_add(static_cast<std::uint64_t>(points_r + points_s), std::memory_order_relaxed);
   return f;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <mutex>
 #include <span>
 #include <utility>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "hrad/core/scene.h"
 #include "hrad/core/types.h"
 #include "hrad/formfactor/polygon_to_polygon.h"
+#include "hrad/formfactor/receiver_gauss_factor.h"
 #include "hrad/solvers/effects.h"
 #include "hrad/solvers/work.h"
 #include "hrad/visibility/visibility.h"
@@ -36,7 +38,10 @@ enum class FormFactorKernel {
   /// Wallace 1993, eq. 4.16): F(i -> j) = (1/A_i) sum_k w_k F(dA_k -> j). Each point's factors to a
   /// closed surface sum to exactly 1, so rows still sum to 1 in a closed room (closure) and the
   /// closed forms hold to rounding; reciprocity holds to the quadrature error. Several times faster (solvers_benchmark
-  /// BM_KernelPairs).
+  /// BM_KernelPairs). A receiver's cells are graded towards the edges of patches that float close in
+  /// front of it (no vertex touching its plane: a lamp a millimetre from a wall), where a cell
+  /// larger than their distance cannot follow the factor's rise; the points still do not depend on
+  /// the source, so closure holds.
   kPointContour,
 };
 
@@ -108,12 +113,21 @@ class FormFactorEvaluator {
   FormFactorEvaluator(const Scene& scene, const Effects& effects, const Visibility* visibility, int visibility_samples,
                       FormFactorKernel kernel = FormFactorKernel::kPointContour);
 
+  /// The polygons the factors will be taken to (the solver's elements or shooting patches), each
+  /// on its patch: the contour rule grades a receiver's points towards their edges where their
+  /// patch floats close in front of the receiver's, so that all of one receiver's factors share one
+  /// point set (closure) and each follows its source's near field. Call before the first factor;
+  /// without it, the patches' own edges.
+  void set_sources(std::span<const std::span<const Vec3>> polygons, std::span<const int> patches);
+
   /// Factor from `receiver` (a polygon lying on patch `receiver_patch`) to `source` (on
   /// `source_patch`). Polygons are counter-clockwise seen from their patches' fronts. Pairs on
   /// one patch are coplanar and give 0 without a kernel call; pairs facing away are culled when
   /// effects.cull_facing_away; the visibility oracle is asked only when effects.visibility.
+  /// `with_reverse` false: the contour kernel skips the source's points and `reverse` is 0 (a
+  /// solver that gathers in one direction only).
   FormFactorEstimate estimate(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
-                              int source_patch) const;
+                              int source_patch, bool with_reverse = true) const;
 
   /// True (and counted as culled) when the effects cull facing-away pairs and one polygon lies
   /// wholly on or behind the other's plane: their factor is exactly 0.
@@ -205,7 +219,14 @@ class FormFactorEvaluator {
 
  private:
   // Both directions of the unoccluded factor with the chosen kernel; counts one evaluation.
-  PairFormFactor unoccluded(std::span<const Vec3> receiver, std::span<const Vec3> source) const;
+  PairFormFactor unoccluded(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
+                            int source_patch, bool with_reverse) const;
+  // F(receiver -> source) by the contour rule on the receiver's points, graded towards the edges of
+  // the patches that float close in front of it (receiver_gauss_points()).
+  double contour_factor(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
+                        int* points) const;
+  // The edges of the sources on patches floating in front of `patch`, found once.
+  const std::vector<NearEdge>& floating_edges(int patch) const;
   // Kernel-weighted visible fraction of a partially visible pair and its error estimate.
   std::pair<double, double> weighted_visibility(std::span<const Vec3> receiver, int receiver_patch,
                                                 std::span<const Vec3> source, int source_patch,
@@ -221,6 +242,9 @@ class FormFactorEvaluator {
   mutable std::atomic<std::uint64_t> point_factors_{0};
   mutable std::atomic<std::uint64_t> shaft_queries_{0};
   mutable std::atomic<std::uint64_t> culled_{0};
+  mutable std::once_flag floating_once_;
+  mutable std::vector<std::vector<std::vector<Vec3>>> sources_by_patch_;
+  mutable std::vector<std::vector<NearEdge>> floating_edges_;
 };
 
 }  // namespace hrad

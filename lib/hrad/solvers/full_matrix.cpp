@@ -121,6 +121,7 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
   DenseLinks links(leaves, leaves);
   {
     auto phase = ctx.phase("form_factors");
+    ctx.set_sources(h, leaves);
     fill_matrix(ctx, h, leaves, links.matrix());
   }
   const Eigen::Map<const DenseLinks::RowMatrix> f = std::as_const(links).matrix();

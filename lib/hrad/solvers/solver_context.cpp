@@ -44,6 +44,16 @@ SolverContext::SolverContext(const Scene& scene, const SolveOptions& options, Me
 
 SolverContext::~SolverContext() = default;
 
+void SolverContext::set_sources(const ElementHierarchy& h, const std::vector<NodeId>& sources) {
+  std::vector<std::span<const Vec3>> polygons;
+  std::vector<int> patches;
+  for (const NodeId id : sources) {
+    polygons.push_back(h.node(id).polygon());
+    patches.push_back(h.node(id).patch);
+  }
+  evaluator_->set_sources(polygons, patches);
+}
+
 double SolverContext::max_area() const {
   return options_.max_area > 0.0 ? options_.max_area : automatic_max_area(scene_);
 }

@@ -51,6 +51,9 @@ class SolverContext {
   const SolveOptions& options() const { return options_; }
   const Effects& effects() const { return summary_.effects; }
   const FormFactorEvaluator& evaluator() const { return *evaluator_; }
+  /// Tells the evaluator which nodes of `h` the factors will be taken to
+  /// (FormFactorEvaluator::set_sources()); before the first factor.
+  void set_sources(const ElementHierarchy& h, const std::vector<NodeId>& sources);
   /// The oracle (null when effects().visibility is false and it was not needed for the analysis).
   const Visibility* visibility() const { return visibility_.get(); }
   /// options.max_area, or automatic_max_area(scene) when it is 0.

@@ -86,6 +86,7 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
   DenseLinks links(elements, patches);
   {
     auto phase = ctx.phase("form_factors");
+    ctx.set_sources(h, patches);
     const FormFactorEvaluator& evaluator = ctx.evaluator();
     Eigen::Map<DenseLinks::RowMatrix> f = links.matrix();
     // n N kernel calls: minutes for a fine mesh, so its rows done with an estimate of the time left.
@@ -98,7 +99,7 @@ SolveSummary solve_substructuring(const Scene& scene, const SolveOptions& option
           const ElementNode& s = h.node(patches[static_cast<std::size_t>(p)]);
           f(i, p) = p == element_patch[static_cast<std::size_t>(i)]
                         ? 0.0
-                        : evaluator.estimate(a.polygon(), a.patch, s.polygon(), s.patch).value;
+                        : evaluator.estimate(a.polygon(), a.patch, s.polygon(), s.patch, false).value;
         }
         progress.advance(static_cast<std::uint64_t>(big_n));
       }
