@@ -66,7 +66,7 @@ TEST(Figures, CostIsTheWorkTheSolvesCounted) {
   // flattens the fits.
   const Scene scene = bundled("cornell_box.obj");
   CostOptions o;
-  o.element_counts = {64, 256, 1024};
+  o.element_counts = {64, 256, 512};
   o.substructure_counts = {64, 256, 1024};
   o.aeps_fractions = {3e-2, 1e-2, 3e-3};
   const std::vector<CostRow> rows = cost_rows(scene, o);
