@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   # toolchain
-  g++ make cmake pkg-config
+  g++ make cmake pkg-config ccache
   # geometry, meshes, linear algebra, fitting
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libopenmesh-dev libeigen3-dev libceres-dev libtbb-dev
   # command line, files, formats
