@@ -37,9 +37,7 @@ function(hrad_test name)
   cmake_parse_arguments(ARG "" "" "DEPS;LABELS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cpp)
   add_executable(${name}_test ${sources})
-  target_link_libraries(${name}_test PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
-  target_compile_definitions(${name}_test PRIVATE
-    HRAD_SOURCE_DIR="${PROJECT_SOURCE_DIR}" HRAD_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  target_link_libraries(${name}_test PRIVATE ${ARG_DEPS} hrad_test_paths GTest::gtest GTest::gtest_main)
   target_precompile_headers(${name}_test REUSE_FROM hrad_test_pch)  # tests/CMakeLists.txt
   # With the standard headers precompiled, GCC 12 no longer treats std::string's inlined copies as
   # system code and reports its known false positive (GCC bug 105329) in tests that build strings.

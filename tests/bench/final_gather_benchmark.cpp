@@ -28,12 +28,13 @@
 #include "hrad/render/render.h"
 #include "hrad/solvers/solve.h"
 #include "hrad/solvers/solved_hierarchy.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
 
 const Scene& cornell() {
-  static const Scene s = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  static const Scene s = read_obj_scene(test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   return s;
 }
 

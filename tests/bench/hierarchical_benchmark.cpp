@@ -10,12 +10,13 @@
 #include "hrad/solvers/hierarchical.h"
 #include "hrad/solvers/solve.h"
 #include "work_counters.h"
+#include "support/source_tree.h"
 
 namespace {
 
 const hrad::Scene& cornell_box() {
   static const hrad::Scene scene =
-      hrad::read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+      hrad::read_obj_scene(hrad::test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   return scene;
 }
 

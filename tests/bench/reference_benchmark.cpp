@@ -16,12 +16,13 @@
 #include "hrad/reference/area_sampler.h"
 #include "hrad/reference/embree_scene.h"
 #include "hrad/reference/reference.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
 
 const Scene& cornell() {
-  static const Scene scene = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  static const Scene scene = read_obj_scene(test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   return scene;
 }
 

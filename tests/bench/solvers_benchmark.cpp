@@ -9,12 +9,13 @@
 #include "hrad/solvers/effects.h"
 #include "hrad/solvers/form_factor_evaluator.h"
 #include "hrad/solvers/solve.h"
+#include "support/source_tree.h"
 
 namespace {
 
 const hrad::Scene& cornell() {
   static const hrad::Scene s =
-      hrad::read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+      hrad::read_obj_scene(hrad::test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   return s;
 }
 

@@ -15,12 +15,13 @@
 #include "hrad/io/obj_reader.h"
 #include "hrad/solvers/solve.h"
 #include "support/umbra_bias.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
 
 void BM_UmbraBias(benchmark::State& state) {
-  const Scene scene = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  const Scene scene = read_obj_scene(test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   SolveOptions options;
   options.aeps = scene.total_area() / static_cast<double>(state.range(0));
   options.push = state.range(1) == 0 ? Push::kHsa : Push::kLeaf;

@@ -13,6 +13,7 @@
 #include "hrad/io/obj_reader.h"
 #include "hrad/visibility/visibility.h"
 #include "hrad/visibility/visible_region.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
@@ -173,7 +174,7 @@ std::vector<std::pair<std::vector<Vec3>, int>> elements(const Scene& s, int k) {
   return out;
 }
 
-const std::string kCornell = std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj";
+const std::string kCornell = test::source_dir() + "/notebooks_data/scenes/cornell_box.obj";
 
 // All ordered element pairs of the Cornell box at k x k elements per patch: the share of pairs the
 // classification settles without rays (facing away, fully visible, fully hidden).

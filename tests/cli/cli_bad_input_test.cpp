@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "run_hrad.h"
+#include "support/source_tree.h"
 
 namespace hrad::test {
 namespace {
@@ -246,13 +247,13 @@ const BadInput kCases[] = {
     // not std::bad_alloc.
     {"render_larger_than_memory",
      {},
-     "--version >/dev/null; ulimit -v 4000000; '" HRAD_EXECUTABLE
-     "' render {d}/missing.ply --out {d}/i.png --width 16384 --height 16384",
+     "--version >/dev/null; ulimit -v 4000000; '" + test::hrad_executable() +
+         "' render {d}/missing.ply --out {d}/i.png --width 16384 --height 16384",
      "--width"},
     {"scene_generate_larger_than_memory",
      {},
-     "--version >/dev/null; ulimit -v 4000000; '" HRAD_EXECUTABLE
-     "' scene generate --polygons 10000000 --out {d}/g.obj",
+     "--version >/dev/null; ulimit -v 4000000; '" + test::hrad_executable() +
+         "' scene generate --polygons 10000000 --out {d}/g.obj",
      "--polygons"},
     // Numbers CLI11 would take: a seed beyond 64 bits, an empty list.
     {"scene_seed_beyond_64_bits",
@@ -291,14 +292,14 @@ TEST(CliOutOfMemory, NamesWhatWasBeingAllocatedAndTheOption) {
   TempDir dir;
   const std::string d = dir.root().string();
   ASSERT_EQ(run_hrad("scene generate --polygons 4000 --out " + d + "/o.obj", dir).exit_code, 0);
-  const RunResult refused = run_hrad("--version >/dev/null; ulimit -v 250000; '" HRAD_EXECUTABLE "' solve " + d +
+  const RunResult refused = run_hrad("--version >/dev/null; ulimit -v 250000; '" + test::hrad_executable() + "' solve " + d +
                                          "/o.obj --threads 1 --quiet --out " + d + "/s.ply --report " + d + "/r.json",
                                      dir);
   EXPECT_EQ(refused.exit_code, 1) << refused.err;
   EXPECT_NE(refused.err.find("elements need"), std::string::npos) << refused.err;
   EXPECT_NE(refused.err.find("raise --aeps"), std::string::npos) << refused.err;
   EXPECT_EQ(dir.entries(), 2u) << "an output (or temporary) file was left behind";
-  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 300000; '" HRAD_EXECUTABLE "' solve " + d +
+  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 300000; '" + test::hrad_executable() + "' solve " + d +
                                    "/o.obj --threads 1 --quiet --out " + d + "/s.ply --report " + d + "/r.json",
                                dir);
   EXPECT_EQ(r.exit_code, 1) << r.err;
@@ -316,7 +317,7 @@ TEST(CliOutOfMemory, NamesWhatWasBeingAllocatedAndTheOption) {
 TEST(CliOutOfMemory, ASolveUnderATightLimitIsWrittenEvenIfThePowerCheckCannotRun) {
   TempDir dir;
   const std::string d = dir.root().string();
-  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 150000; '" HRAD_EXECUTABLE "' solve '" HRAD_SOURCE_DIR
+  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 150000; '" + test::hrad_executable() + "' solve '" + test::source_dir() +
                                "/notebooks_data/scenes/simple_room.obj' --threads 1 --out " +
                                    d + "/s.ply --report " + d + "/r.json",
                                dir);

@@ -20,6 +20,7 @@
 #include "hrad/core/face_geometry.h"
 #include "hrad/io/solution_ply.h"
 #include "run_hrad.h"
+#include "support/source_tree.h"
 
 namespace hrad::test {
 namespace {
@@ -134,7 +135,7 @@ TEST(CliOutputs, FilesGetTheUmasksModeLikeAnyProgramsOutput) {
         run_hrad(std::string("solve ") + f.obj + " --quiet --report " + o + "/r.json --out " + o + "/s.ply", out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     // run_hrad's shell inherits this process's umask: set it for the child explicitly instead.
-    const RunResult masked = run_hrad(std::string("--version >/dev/null; umask ") + mask + "; '" + HRAD_EXECUTABLE +
+    const RunResult masked = run_hrad(std::string("--version >/dev/null; umask ") + mask + "; '" + test::hrad_executable() +
                                           "' render " + o + "/s.ply --out " + o + "/i.png",
                                       out);
     ASSERT_EQ(masked.exit_code, 0) << masked.err;
@@ -156,7 +157,7 @@ pid_t start_hrad(const std::vector<std::string>& args) {
     std::signal(SIGTERM, SIG_DFL);
     if (std::freopen("/dev/null", "w", stderr) == nullptr || std::freopen("/dev/null", "w", stdout) == nullptr)
       _exit(99);
-    execv(HRAD_EXECUTABLE, argv.data());
+    execv(test::hrad_executable().c_str(), argv.data());
     _exit(98);
   }
   return pid;
@@ -259,7 +260,7 @@ namespace {
 TEST(CliOutputs, FiguresRunFromAnyFolderAndPlotsGetTheUmasksMode) {
   TempDir dir;
   const std::string d = dir.root().string();
-  const RunResult r = run_hrad("--version >/dev/null; cd " + d + " && umask 022 && '" + std::string(HRAD_EXECUTABLE) +
+  const RunResult r = run_hrad("--version >/dev/null; cd " + d + " && umask 022 && '" + test::hrad_executable() +
                                    "' figures --out figs --quick --only 3",
                                dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "run_hrad.h"
+#include "support/source_tree.h"
 
 namespace hrad::test {
 namespace {
@@ -66,7 +67,7 @@ std::vector<std::string> help_subcommands(const std::string& help) {
 
 TEST(CliReadme, OptionTablesMatchHelp) {
   // Every (sub)subcommand `hrad --help` lists, so a new command without a README table fails too.
-  const std::string readme = slurp(std::string(HRAD_SOURCE_DIR) + "/README.md");
+  const std::string readme = slurp(test::source_dir() + "/README.md");
   ASSERT_FALSE(readme.empty());
   TempDir dir;
   const RunResult top = run_hrad("--help", dir);

@@ -9,6 +9,7 @@
 
 #include "../formfactor/howell.h"
 #include "run_hrad.h"
+#include "support/source_tree.h"
 
 namespace hrad::test {
 namespace {
@@ -130,7 +131,7 @@ TEST(CliViewFactors, WorkBeyondMemoryIsRefusedWithAnEstimate) {
         }
   const std::string scene = dir.write("box.obj", obj.str());
   const std::string out = dir.path("F.mtx");
-  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 250000; '" HRAD_EXECUTABLE "' viewfactors " + scene +
+  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 250000; '" + test::hrad_executable() + "' viewfactors " + scene +
                                    " --out " + out + " --quiet",
                                dir);
   EXPECT_NE(r.exit_code, 0);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../support/temp_dir.h"
+#include "../support/source_tree.h"
 
 namespace hrad::test {
 
@@ -42,11 +43,11 @@ inline std::vector<std::string> csv_cells(const std::string& line) {
   return cells;
 }
 
-/// Runs `HRAD_EXECUTABLE args` (args are passed to /bin/sh as written) with the source tree as
+/// Runs `hrad args` (args are passed to /bin/sh as written) with the source tree as
 /// working directory; the captured streams go to files in `scratch`.
 inline RunResult run_hrad(const std::string& args, const TempDir& scratch) {
   const std::string out = scratch.path(".stdout"), err = scratch.path(".stderr");
-  const std::string command = std::string("cd '") + HRAD_SOURCE_DIR + "' && '" + HRAD_EXECUTABLE + "' " + args + " >'" +
+  const std::string command = "cd '" + source_dir() + "' && '" + hrad_executable() + "' " + args + " >'" +
                               out + "' 2>'" + err + "'";
   const int status = std::system(command.c_str());
   RunResult r;

@@ -11,12 +11,13 @@
 #include <gtest/gtest.h>
 
 #include "hrad/io/obj_reader.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
 
 Scene bundled(const std::string& name) {
-  return read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/" + name);
+  return read_obj_scene(test::source_dir() + "/notebooks_data/scenes/" + name);
 }
 
 // A CSV as a header and rows of cells (no quoting: hrad's CSVs have none).

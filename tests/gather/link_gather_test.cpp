@@ -16,6 +16,7 @@
 #include "hrad/gather/leaf_gather.h"
 #include "hrad/io/obj_reader.h"
 #include "hrad/solvers/solve.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
@@ -117,7 +118,7 @@ TEST(LinkGather, PointUnderASquareEmitterGathersHowellsFactor) {
 }
 
 const Scene& cornell() {
-  static const Scene s = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  static const Scene s = read_obj_scene(test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   return s;
 }
 

@@ -21,6 +21,7 @@
 #include "hrad/io/obj_reader.h"
 #include "hrad/render/render.h"
 #include "hrad/solvers/solve.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
@@ -29,7 +30,7 @@ using test::make_box;
 using test::material;
 
 const Scene& cornell() {
-  static const Scene s = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  static const Scene s = read_obj_scene(test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   return s;
 }
 

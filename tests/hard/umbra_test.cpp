@@ -12,12 +12,13 @@
 #include "hrad/io/obj_reader.h"
 #include "hrad/solvers/solve.h"
 #include "support/umbra_bias.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
 
 TEST(Umbra, CornellBoxUmbrasAreWithinHalfAPercentOfTheirFinalGather) {
-  const Scene scene = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  const Scene scene = read_obj_scene(test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   SolveOptions options;
   options.aeps = scene.total_area() / 4000.0;
   Solution s;

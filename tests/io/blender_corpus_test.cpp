@@ -8,11 +8,12 @@
 #include "hrad/core/scene_checks.h"
 #include "hrad/io/input_file.h"
 #include "hrad/io/scene_reader.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
 
-const std::string kDir = std::string(HRAD_SOURCE_DIR) + "/tests/io/corpus/blender/";
+const std::string kDir = test::source_dir() + "/tests/io/corpus/blender/";
 
 std::map<std::string, double> area_by_group(const Scene& s) {
   std::map<std::string, double> g;

@@ -2,13 +2,14 @@
 #include <gtest/gtest.h>
 
 #include "hrad/io/obj_reader.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
 
 Scene load(const std::string& name) {
   std::vector<std::string> warnings;
-  Scene s = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/" + name, &warnings);
+  Scene s = read_obj_scene(test::source_dir() + "/notebooks_data/scenes/" + name, &warnings);
   EXPECT_TRUE(warnings.empty()) << name << ": " << (warnings.empty() ? "" : warnings[0]);
   return s;
 }

@@ -8,13 +8,14 @@
 #include "../support/temp_dir.h"
 #include "hrad/core/error.h"
 #include "hrad/io/atomic_file.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
 
-const std::string kCornell = std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj";
+const std::string kCornell = test::source_dir() + "/notebooks_data/scenes/cornell_box.obj";
 // The published floor: one quad with the blocks standing inside it.
-const std::string kCornellUncut = std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box_uncut_floor.obj";
+const std::string kCornellUncut = test::source_dir() + "/notebooks_data/scenes/cornell_box_uncut_floor.obj";
 
 const Patch& patch_of_group(const Scene& s, const std::string& group) {
   for (const Patch& p : s.patches)

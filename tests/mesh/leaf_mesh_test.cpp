@@ -14,6 +14,7 @@
 #include "hrad/io/scene_reader.h"
 #include "hrad/mesh/element_hierarchy.h"
 #include "test_scene.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
@@ -123,7 +124,7 @@ TEST(LeafMesh, CopiesRefineApart) {
 }
 
 TEST(LeafMesh, CornellBoxRefinedUnevenlyIsCrackFree) {
-  const Scene s = read_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  const Scene s = read_scene(test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   ElementHierarchy h(s);
   refine_at_random(h, 300, 6);
   h.balance();

@@ -15,6 +15,7 @@
 #include "hrad/solvers/solve.h"
 #include "hrad/solvers/substructuring.h"
 #include "solver_test_scenes.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
@@ -329,7 +330,7 @@ RulerError face_error_against_ruler(const Scene& s, const Solution& sol, const s
 }
 
 TEST(CornellBox, FullAndSubstructuringConvergeToTheRuler) {
-  const Scene s = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  const Scene s = read_obj_scene(test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   ReferenceOptions ro;
   ro.samples = 65536;
   std::vector<FaceEstimate> ruler;

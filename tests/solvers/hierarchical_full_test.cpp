@@ -10,12 +10,13 @@
 #include "hrad/io/obj_reader.h"
 #include "hrad/solvers/hierarchical.h"
 #include "hrad/solvers/solve.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
 
 std::string scene_path(const std::string& name) {
-  return std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/" + name;
+  return test::source_dir() + "/notebooks_data/scenes/" + name;
 }
 
 std::vector<Vec3> face_polygon(const Solution& s, std::size_t f) {

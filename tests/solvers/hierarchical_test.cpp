@@ -24,12 +24,13 @@
 #include "hrad/solvers/solve.h"
 #include "hrad/solvers/solver_context.h"
 #include "solver_test_scenes.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
 
 std::string scene_path(const std::string& name) {
-  return std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/" + name;
+  return test::source_dir() + "/notebooks_data/scenes/" + name;
 }
 
 using test::add_polygon;

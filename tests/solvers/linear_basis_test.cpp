@@ -27,6 +27,7 @@
 #include "hrad/solvers/solve.h"
 #include "hrad/solvers/solver_context.h"
 #include "solver_test_scenes.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
@@ -284,7 +285,7 @@ TEST(LinearBasis, SubstructuringWithCoarseShootingPatchesSendsAverages) {
   // element (at most about twice the element's mean reflected light, a small fraction of the
   // brightest radiosity): every corner's reflected light must be above -1% of the brightest
   // radiosity, and the iteration must converge in fewer than 40 steps.
-  const Scene s = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  const Scene s = read_obj_scene(test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   SolveOptions o;
   o.method = Method::kSubstructure;
   o.basis = Basis::kLinear;

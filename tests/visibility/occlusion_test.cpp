@@ -7,6 +7,7 @@
 #include "hrad/io/obj_reader.h"
 #include "hrad/visibility/visibility.h"
 #include "test_scenes.h"
+#include "support/source_tree.h"
 
 namespace hrad {
 namespace {
@@ -85,7 +86,7 @@ TEST(SceneHasOcclusion, DecidedExactlyForAPatchOffTheHullByOneTinyStep) {
 }
 
 TEST(SceneHasOcclusion, CornellBoxHasOcclusion) {
-  const Scene s = read_obj_scene(std::string(HRAD_SOURCE_DIR) + "/notebooks_data/scenes/cornell_box.obj");
+  const Scene s = read_obj_scene(test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   EXPECT_TRUE(make_visibility(s)->scene_has_occlusion());
 }
 

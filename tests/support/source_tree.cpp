@@ -1,0 +1,20 @@
+#include "support/source_tree.h"
+
+namespace hrad::test {
+
+const std::string& source_dir() {
+  static const std::string dir = HRAD_SOURCE_DIR;
+  return dir;
+}
+
+const std::string& binary_dir() {
+  static const std::string dir = HRAD_BINARY_DIR;
+  return dir;
+}
+
+const std::string& hrad_executable() {
+  static const std::string path = HRAD_EXECUTABLE;
+  return path;
+}
+
+}  // namespace hrad::test
