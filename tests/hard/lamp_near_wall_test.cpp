@@ -6,8 +6,8 @@
 // its factor to the lamp would be off by the footprint's share of the element (closure holds,
 // reciprocity does not, and the error becomes power). The kernel takes the closed form for such
 // floating pairs (FormFactorKernel::kPointContour). The hierarchical solver's smallest elements
-// (--aeps) are larger than the lamp, and the field of one link over such an element cannot follow
-// a footprint with 1 mm edges: it balances or says it does not.
+// (--aeps) are larger than the lamp; it balances once the links at the footprint's elements are
+// decided with the brightness the first solve found there.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -87,7 +87,6 @@ TEST(LampNearWall, TheWallsGaussRuleMissesTheLampsNearField) {
 // Substructuring's kernel is no longer what limits it: the contour kernel's balance is its
 // closed-form kernel's within 2e-4; what remains is the method's (the wall's shooting patch sends
 // its mean radiosity to the lamp, not the bright footprint beneath it), and then it says so.
-// Hierarchical radiosity either balances within 1e-3 or its power check says it does not.
 TEST(LampNearWall, FacingTheWallBalancesOrSaysItDoesNot) {
   for (const double w : {0.25, 0.08})
     for (const double gap : {1e-3, 3e-4}) {
@@ -99,9 +98,30 @@ TEST(LampNearWall, FacingTheWallBalancesOrSaysItDoesNot) {
       const double sub = residual(s, Method::kSubstructure, false, &warned);
       EXPECT_NEAR(sub, residual(s, Method::kSubstructure, true, nullptr), 2e-4);
       EXPECT_TRUE(std::abs(sub) < 1e-3 || warned) << "substructuring residual " << sub;
-      const double r = residual(s, Method::kHierarchical, false, &warned);
-      EXPECT_TRUE(std::abs(r) < 1e-3 || warned) << "hierarchical residual " << r;
     }
+}
+
+// Guarantee: hierarchical radiosity balances the lamp facing the wall within 1e-3 at its defaults and
+// with elements down to a sixteenth of their area (aeps), though its smallest elements are larger
+// than the lamp's footprint. The first solve weighs the wall as a reflector of the room's mean
+// radiosity; the footprint is hundreds of times brighter, and the links from the wall's coarse
+// elements carried it with a field that cannot follow it (17% of the power too much on
+// lamp_near_wall.obj at --aeps 0.004, total / 16500). The solver decides those links again with
+// the brightness it found (ErrorBoundOracle::observe()).
+TEST(LampNearWall, HierarchicalRadiosityBalancesTheLampFacingTheWall) {
+  for (const auto& [w, gap] : {std::pair{0.25, 1e-3}, std::pair{0.08, 3e-4}}) {
+    const Scene s = lamp_room(gap, true, w);
+    for (const double fraction : {0.0, 1.0 / 16000.0}) {
+      SCOPED_TRACE(::testing::Message() << "lamp " << w << " gap " << gap << " aeps/total " << fraction);
+      SolveOptions o;
+      o.method = Method::kHierarchical;
+      o.aeps = fraction * s.total_area();
+      Solution sol;
+      const SolveSummary sum = solve(s, o, &sol);
+      EXPECT_EQ(sum.termination, Termination::kConverged) << sum.message;
+      EXPECT_LT(std::abs(energy_balance(s, sol).closed_scene_residual[0]), 1e-3);
+    }
+  }
 }
 
 }  // namespace

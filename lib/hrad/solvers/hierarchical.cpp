@@ -107,7 +107,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   }
   const ClusterTransfer geometry(scene, h, tree.get());
   std::vector<Rgb> cluster_radiosity(tree ? tree->size() : 0, Rgb::Zero());
-  const ErrorBoundOracle oracle(h, tree.get(), geometry, ctx.evaluator(),
+  ErrorBoundOracle oracle(h, tree.get(), geometry, ctx.evaluator(),
                                 {t.feps, t.bfeps, t.aeps, options.push == Push::kHsa, options.basis == Basis::kLinear},
                                 source_weights(scene, ctx.channels()), ctx.channels(), &cluster_radiosity);
 
@@ -124,6 +124,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
 
   const double bound = radiosity_bound(scene);
   std::vector<Link> links;
+  std::vector<Link> standing;  // links a re-refinement leaves as they are
   Operators ops;
   std::vector<PointValues> point_radiosity;  // the leaves' radiosity at their points (for display)
   std::uint64_t candidates = 0;
@@ -146,6 +147,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
       balanced = h.balance();
       figures["balance_splits"] += static_cast<double>(balanced);
     }
+    refined.links.insert(refined.links.begin(), standing.begin(), standing.end());
     const bool changed = refined.splits > 0 || balanced > 0 || refined.links.size() != links.size();
     links = std::move(refined.links);
     {
@@ -167,11 +169,25 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     push_pull.store(field, h, &cluster_radiosity);
     if (options.push == Push::kHsa || options.basis == Basis::kLinear)
       point_radiosity = std::move(field.point_radiosity);
-    if (!converged) break;
-    // BF refinement: the tolerance depends on B, so refine again with the new radiosity (HSA sec. 4.2).
-    if (t.bfeps <= 0.0 || passes >= kMaxRefinePasses) break;
+    if (!converged || passes >= kMaxRefinePasses) break;
     work.clear();
-    for (const Link& l : links) work.push_back({.p = l.p, .q = l.q});
+    standing.clear();
+    if (t.bfeps > 0.0) {
+      // BF refinement: the tolerance depends on B, so refine again with the new radiosity (HSA sec. 4.2).
+      for (const Link& l : links) work.push_back({.p = l.p, .q = l.q});
+      continue;
+    }
+    // feps: the links at elements the solve found far brighter than their a-priori weight are
+    // decided again with their brightness (ErrorBoundOracle::observe()); the others stand.
+    const std::vector<char> raised = oracle.observe();
+    auto is_raised = [&](NodeRef r) { return !is_cluster(r) && raised[static_cast<std::size_t>(r)] != 0; };
+    for (const Link& l : links)
+      if (is_raised(l.p) || is_raised(l.q))
+        work.push_back({.p = l.p, .q = l.q});
+      else
+        standing.push_back(l);
+    if (work.empty()) break;
+    ctx.progress(fmt::format("hierarchical: {} links at elements brighter than their weight decided again", work.size()));
   }
 
   // Figures of the mesh and the links.

@@ -8,7 +8,8 @@
 // pair: drop, link, or split the side whose gather errs more, never below the smallest area aeps.
 // The links are solved by Jacobi iterations of gather and push-pull (iteration.h) until the
 // estimated error is below SolveOptions::tolerance. With --bfeps the links are re-refined with the
-// current radiosity after each solve (HSA sec. 4.2) until nothing changes.
+// current radiosity after each solve (HSA sec. 4.2) until nothing changes; with feps, only the links
+// at elements the solve found far brighter than their a-priori weight (ErrorBoundOracle::observe()).
 //
 // Two link operators:
 //  * Push::kHsa (the default): each link is gathered at the nodes it joins and pushed down

@@ -247,6 +247,7 @@ ErrorBoundOracle::ErrorBoundOracle(const ElementHierarchy& hierarchy, const Clus
       rays_per_point_(std::max(1, evaluator.visibility_samples() / 64)),
       pair_samples_(std::max(4, evaluator.visibility_samples())) {
   for (const Patch& patch : evaluator.scene().patches) total_area_ += patch.area;
+  b_mean_ = mean_radiosity(evaluator.scene());
   if (tree_ != nullptr) {
     // A cluster's weight is its brightest patch's.
     cluster_weight_.assign(tree_->size(), 1.0);
@@ -266,7 +267,39 @@ bool ErrorBoundOracle::can_split(NodeRef r) const {
 
 double ErrorBoundOracle::weight(NodeRef r) const {
   if (is_cluster(r)) return cluster_weight_[static_cast<std::size_t>(cluster_index(r))];
-  return patch_weight_[static_cast<std::size_t>(h_.node(r).patch)];
+  const double a_priori = patch_weight_[static_cast<std::size_t>(h_.node(r).patch)];
+  if (observed_.empty()) return a_priori;
+  // Elements split after the observation take their nearest observed ancestor's.
+  NodeId id = r;
+  while (static_cast<std::size_t>(id) >= observed_.size()) id = h_.node(id).parent;
+  return std::max(a_priori, observed_[static_cast<std::size_t>(id)]);
+}
+
+std::vector<char> ErrorBoundOracle::observe() {
+  const std::size_t n = h_.size();
+  if (bfeps_only() || !(b_mean_.maxCoeff() > 0.0)) return std::vector<char>(n, 0);
+  // Each element's brightest leaf, in units of B_mean (children have larger ids than their parent).
+  std::vector<double> peak(n, 0.0);
+  for (std::size_t i = n; i-- > 0;) {
+    const ElementNode& e = h_.node(static_cast<NodeId>(i));
+    if (e.is_leaf())
+      for (int c = 0; c < channels_; ++c)
+        if (b_mean_[c] > 0.0) peak[i] = std::max(peak[i], std::abs(e.radiosity[c]) / b_mean_[c]);
+    if (e.parent != kNoNode) peak[static_cast<std::size_t>(e.parent)] = std::max(peak[static_cast<std::size_t>(e.parent)], peak[i]);
+  }
+  std::vector<char> raised(n, 0);
+  std::vector<double> observed(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double now = weight(static_cast<NodeRef>(i));
+    if (peak[i] > kBrighterThanWeighed * now) {
+      observed[i] = peak[i];
+      raised[i] = 1;
+    } else {
+      observed[i] = i < observed_.size() ? observed_[i] : now;
+    }
+  }
+  observed_ = std::move(observed);
+  return raised;
 }
 
 double ErrorBoundOracle::brightest(NodeRef r) const {
@@ -595,7 +628,7 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
     c.decision = p_can ? Decision::kSplitP : Decision::kLink;
 }
 
-std::vector<double> source_weights(const Scene& scene, int channels) {
+Rgb mean_radiosity(const Scene& scene) {
   Rgb emitted = Rgb::Zero(), reflectance = Rgb::Zero();
   double area = 0.0;
   for (const Patch& p : scene.patches) {
@@ -604,12 +637,16 @@ std::vector<double> source_weights(const Scene& scene, int channels) {
     reflectance += p.area * m.reflectance;
     area += p.area;
   }
-  std::vector<double> weights(scene.patches.size(), 1.0);
-  if (area <= 0.0) return weights;
-  // Closed-room radiosity of the mean emission and reflectance (rhobar capped: a lossless scene
-  // with light in it has no finite mean, and the weights only need to rank sources).
+  if (area <= 0.0) return Rgb::Zero();
+  // Rhobar capped: a lossless scene with light in it has no finite mean, and the weights only need
+  // to rank sources.
   const Rgb rho_bar = (reflectance / area).min(0.999);
-  const Rgb b_mean = (emitted / area) / (1.0 - rho_bar);
+  return (emitted / area) / (1.0 - rho_bar);
+}
+
+std::vector<double> source_weights(const Scene& scene, int channels) {
+  std::vector<double> weights(scene.patches.size(), 1.0);
+  const Rgb b_mean = mean_radiosity(scene);
   for (std::size_t i = 0; i < scene.patches.size(); ++i) {
     const Material& m = scene.material_of(scene.patches[i]);
     double w = 0.0;

@@ -138,6 +138,16 @@ class ErrorBoundOracle final : public RefinementOracle {
   void decide(Candidate& c) const override;
   bool can_split(NodeRef r) const override;
 
+  /// After a solve with feps: the elements whose brightest leaf is more than kBrighterThanWeighed
+  /// times their weight (in units of B_mean) take that brightness as their weight from now on, and
+  /// are returned (per element id, 1 where raised). The a-priori weight takes a reflector's
+  /// radiosity as rho B_mean; next to a lamp a reflector is far brighter (a wall a millimetre from
+  /// a lamp: ~500 B_mean under it against 0.7), and the links from its coarse elements carry that
+  /// bright footprint with a field over the source that cannot follow it. Only the links at raised
+  /// elements need deciding again: no other decision reads a changed weight. Nothing is raised with
+  /// bfeps alone (its B*F test already reads the radiosity).
+  std::vector<char> observe();
+
  private:
   void decide_elements(Candidate& c) const;
   void decide_with_cluster(Candidate& c) const;
@@ -160,7 +170,14 @@ class ErrorBoundOracle final : public RefinementOracle {
   int rays_per_point_;
   int pair_samples_;
   double total_area_ = 0.0;  ///< the scene's: a link's weighted exchange over it is its share of the power
+  Rgb b_mean_ = Rgb::Zero();  ///< mean_radiosity() of the scene
+  /// Per element (as numbered when last observed): its weight then; empty before any observe().
+  std::vector<double> observed_;
+  bool bfeps_only() const { return !(tol_.feps > 0.0); }
 };
+
+/// observe() raises an element's weight when its brightest leaf passes its weight by this factor.
+inline constexpr double kBrighterThanWeighed = 8.0;
 
 /// The feps weights: a priori radiosity of each patch relative to the scene's, w = max over
 /// channels of (E / B_mean + rho), with B_mean = Ebar / (1 - rhobar) the closed-room radiosity of
@@ -169,5 +186,7 @@ class ErrorBoundOracle final : public RefinementOracle {
 /// solving as E_q + rho_q B_mean. In a closed room with uniform E and rho every weight is 1 (plain
 /// feps). All 1 when nothing emits. Only `channels` channels count (1 or 3).
 std::vector<double> source_weights(const Scene& scene, int channels);
+/// B_mean = Ebar / (1 - rhobar) per channel (rhobar at most 0.999); 0 when nothing emits.
+Rgb mean_radiosity(const Scene& scene);
 
 }  // namespace hrad
