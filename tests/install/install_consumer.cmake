@@ -1,8 +1,9 @@
 # Run by CTest (tests/install/CMakeLists.txt) with HRAD_SOURCE_DIR, HRAD_BINARY_DIR, WORK_DIR, CXX and
-# LAUNCHER (the build's compiler launcher, e.g. ccache; may be empty):
+# LAUNCHER (the build's compiler launcher, e.g. ccache, its items joined by '|'; may be empty):
 # installs hrad into WORK_DIR/prefix, builds consumer/ against it and runs it. Fails at the first step
 # that fails, and when the consumer's compile line shows hrad's trees or a private dependency's flags.
 set(consumer_dir ${CMAKE_CURRENT_LIST_DIR}/consumer)
+string(REPLACE "|" ";" launcher "${LAUNCHER}")
 file(REMOVE_RECURSE ${WORK_DIR})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${HRAD_BINARY_DIR} --prefix ${WORK_DIR}/prefix
                 OUTPUT_QUIET COMMAND_ERROR_IS_FATAL ANY)
@@ -14,7 +15,7 @@ foreach(file include/hrad/version.h include/hrad/core/types.h lib/cmake/hrad/hra
 endforeach()
 
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${consumer_dir} -B ${WORK_DIR}/build -DCMAKE_BUILD_TYPE=Release
-                        -DCMAKE_CXX_COMPILER=${CXX} "-DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}" -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix
+                        -DCMAKE_CXX_COMPILER=${CXX} "-DCMAKE_CXX_COMPILER_LAUNCHER=${launcher}" -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix
                 OUTPUT_QUIET COMMAND_ERROR_IS_FATAL ANY)
 execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR}/build OUTPUT_QUIET COMMAND_ERROR_IS_FATAL ANY)
 
