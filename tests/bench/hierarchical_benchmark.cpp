@@ -9,8 +9,8 @@
 #include "hrad/io/obj_reader.h"
 #include "hrad/solvers/hierarchical.h"
 #include "hrad/solvers/solve.h"
-#include "work_counters.h"
 #include "support/source_tree.h"
+#include "work_counters.h"
 
 namespace {
 

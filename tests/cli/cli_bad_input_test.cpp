@@ -292,9 +292,10 @@ TEST(CliOutOfMemory, NamesWhatWasBeingAllocatedAndTheOption) {
   TempDir dir;
   const std::string d = dir.root().string();
   ASSERT_EQ(run_hrad("scene generate --polygons 4000 --out " + d + "/o.obj", dir).exit_code, 0);
-  const RunResult refused = run_hrad("--version >/dev/null; ulimit -v 250000; '" + test::hrad_executable() + "' solve " + d +
-                                         "/o.obj --threads 1 --quiet --out " + d + "/s.ply --report " + d + "/r.json",
-                                     dir);
+  const RunResult refused =
+      run_hrad("--version >/dev/null; ulimit -v 250000; '" + test::hrad_executable() + "' solve " + d +
+                   "/o.obj --threads 1 --quiet --out " + d + "/s.ply --report " + d + "/r.json",
+               dir);
   EXPECT_EQ(refused.exit_code, 1) << refused.err;
   EXPECT_NE(refused.err.find("elements need"), std::string::npos) << refused.err;
   EXPECT_NE(refused.err.find("raise --aeps"), std::string::npos) << refused.err;
@@ -317,8 +318,8 @@ TEST(CliOutOfMemory, NamesWhatWasBeingAllocatedAndTheOption) {
 TEST(CliOutOfMemory, ASolveUnderATightLimitIsWrittenEvenIfThePowerCheckCannotRun) {
   TempDir dir;
   const std::string d = dir.root().string();
-  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 150000; '" + test::hrad_executable() + "' solve '" + test::source_dir() +
-                               "/notebooks_data/scenes/simple_room.obj' --threads 1 --out " +
+  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 150000; '" + test::hrad_executable() + "' solve '" +
+                                   test::source_dir() + "/notebooks_data/scenes/simple_room.obj' --threads 1 --out " +
                                    d + "/s.ply --report " + d + "/r.json",
                                dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -135,8 +135,8 @@ TEST(CliOutputs, FilesGetTheUmasksModeLikeAnyProgramsOutput) {
         run_hrad(std::string("solve ") + f.obj + " --quiet --report " + o + "/r.json --out " + o + "/s.ply", out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     // run_hrad's shell inherits this process's umask: set it for the child explicitly instead.
-    const RunResult masked = run_hrad(std::string("--version >/dev/null; umask ") + mask + "; '" + test::hrad_executable() +
-                                          "' render " + o + "/s.ply --out " + o + "/i.png",
+    const RunResult masked = run_hrad(std::string("--version >/dev/null; umask ") + mask + "; '" +
+                                          test::hrad_executable() + "' render " + o + "/s.ply --out " + o + "/i.png",
                                       out);
     ASSERT_EQ(masked.exit_code, 0) << masked.err;
     struct stat st {};

@@ -131,8 +131,8 @@ TEST(CliViewFactors, WorkBeyondMemoryIsRefusedWithAnEstimate) {
         }
   const std::string scene = dir.write("box.obj", obj.str());
   const std::string out = dir.path("F.mtx");
-  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 250000; '" + test::hrad_executable() + "' viewfactors " + scene +
-                                   " --out " + out + " --quiet",
+  const RunResult r = run_hrad("--version >/dev/null; ulimit -v 250000; '" + test::hrad_executable() +
+                                   "' viewfactors " + scene + " --out " + out + " --quiet",
                                dir);
   EXPECT_NE(r.exit_code, 0);
   // One error line (after the reader's warning that the faces have no material).

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "../support/temp_dir.h"
 #include "../support/source_tree.h"
+#include "../support/temp_dir.h"
 
 namespace hrad::test {
 
@@ -47,8 +47,8 @@ inline std::vector<std::string> csv_cells(const std::string& line) {
 /// working directory; the captured streams go to files in `scratch`.
 inline RunResult run_hrad(const std::string& args, const TempDir& scratch) {
   const std::string out = scratch.path(".stdout"), err = scratch.path(".stderr");
-  const std::string command = "cd '" + source_dir() + "' && '" + hrad_executable() + "' " + args + " >'" +
-                              out + "' 2>'" + err + "'";
+  const std::string command =
+      "cd '" + source_dir() + "' && '" + hrad_executable() + "' " + args + " >'" + out + "' 2>'" + err + "'";
   const int status = std::system(command.c_str());
   RunResult r;
   if (WIFEXITED(status))

@@ -16,9 +16,7 @@
 namespace hrad {
 namespace {
 
-Scene bundled(const std::string& name) {
-  return read_obj_scene(test::source_dir() + "/notebooks_data/scenes/" + name);
-}
+Scene bundled(const std::string& name) { return read_obj_scene(test::source_dir() + "/notebooks_data/scenes/" + name); }
 
 // A CSV as a header and rows of cells (no quoting: hrad's CSVs have none).
 struct Csv {

@@ -11,8 +11,8 @@
 
 #include "hrad/io/obj_reader.h"
 #include "hrad/solvers/solve.h"
-#include "support/umbra_bias.h"
 #include "support/source_tree.h"
+#include "support/umbra_bias.h"
 
 namespace hrad {
 namespace {

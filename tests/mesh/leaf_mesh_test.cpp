@@ -13,8 +13,8 @@
 
 #include "hrad/io/scene_reader.h"
 #include "hrad/mesh/element_hierarchy.h"
-#include "test_scene.h"
 #include "support/source_tree.h"
+#include "test_scene.h"
 
 namespace hrad {
 namespace {

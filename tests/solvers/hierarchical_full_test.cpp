@@ -15,9 +15,7 @@
 namespace hrad {
 namespace {
 
-std::string scene_path(const std::string& name) {
-  return test::source_dir() + "/notebooks_data/scenes/" + name;
-}
+std::string scene_path(const std::string& name) { return test::source_dir() + "/notebooks_data/scenes/" + name; }
 
 std::vector<Vec3> face_polygon(const Solution& s, std::size_t f) {
   std::vector<Vec3> poly;

@@ -29,9 +29,7 @@
 namespace hrad {
 namespace {
 
-std::string scene_path(const std::string& name) {
-  return test::source_dir() + "/notebooks_data/scenes/" + name;
-}
+std::string scene_path(const std::string& name) { return test::source_dir() + "/notebooks_data/scenes/" + name; }
 
 using test::add_polygon;
 using test::make_faceted_sphere;

@@ -6,8 +6,8 @@
 
 #include "hrad/io/obj_reader.h"
 #include "hrad/visibility/visibility.h"
-#include "test_scenes.h"
 #include "support/source_tree.h"
+#include "test_scenes.h"
 
 namespace hrad {
 namespace {

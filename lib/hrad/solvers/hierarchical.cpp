@@ -108,8 +108,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   const ClusterTransfer geometry(scene, h, tree.get());
   std::vector<Rgb> cluster_radiosity(tree ? tree->size() : 0, Rgb::Zero());
   ErrorBoundOracle oracle(h, tree.get(), geometry, ctx.evaluator(),
-                                {t.feps, t.bfeps, t.aeps, options.push == Push::kHsa, options.basis == Basis::kLinear},
-                                source_weights(scene, ctx.channels()), ctx.channels(), &cluster_radiosity);
+                          {t.feps, t.bfeps, t.aeps, options.push == Push::kHsa, options.basis == Basis::kLinear},
+                          source_weights(scene, ctx.channels()), ctx.channels(), &cluster_radiosity);
 
   std::vector<Candidate> work;
   if (tree) {
@@ -187,7 +187,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
       else
         standing.push_back(l);
     if (work.empty()) break;
-    ctx.progress(fmt::format("hierarchical: {} links at elements brighter than their weight decided again", work.size()));
+    ctx.progress(
+        fmt::format("hierarchical: {} links at elements brighter than their weight decided again", work.size()));
   }
 
   // Figures of the mesh and the links.

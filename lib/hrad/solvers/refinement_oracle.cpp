@@ -285,7 +285,8 @@ std::vector<char> ErrorBoundOracle::observe() {
     if (e.is_leaf())
       for (int c = 0; c < channels_; ++c)
         if (b_mean_[c] > 0.0) peak[i] = std::max(peak[i], std::abs(e.radiosity[c]) / b_mean_[c]);
-    if (e.parent != kNoNode) peak[static_cast<std::size_t>(e.parent)] = std::max(peak[static_cast<std::size_t>(e.parent)], peak[i]);
+    if (e.parent != kNoNode)
+      peak[static_cast<std::size_t>(e.parent)] = std::max(peak[static_cast<std::size_t>(e.parent)], peak[i]);
   }
   std::vector<char> raised(n, 0);
   std::vector<double> observed(n, 0.0);
