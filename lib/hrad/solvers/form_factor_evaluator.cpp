@@ -7,6 +7,7 @@
 #include <mutex>
 #include <numbers>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "hrad/formfactor/clip_polygon.h"
@@ -371,6 +372,8 @@ Work FormFactorEvaluator::work() const {
 }
 
 void FormFactorEvaluator::set_sources(std::span<const std::span<const Vec3>> polygons, std::span<const int> patches) {
+  if (floating_built_.load(std::memory_order_acquire))
+    throw std::logic_error("FormFactorEvaluator::set_sources after the first factor: the receivers' points are fixed");
   sources_by_patch_.assign(scene_.patches.size(), {});
   for (std::size_t k = 0; k < polygons.size(); ++k)
     sources_by_patch_[static_cast<std::size_t>(patches[k])].emplace_back(polygons[k].begin(), polygons[k].end());
@@ -416,6 +419,7 @@ const std::vector<NearEdge>& FormFactorEvaluator::floating_edges(int patch) cons
           }
       }
     });
+    floating_built_.store(true, std::memory_order_release);
   });
   return floating_edges_[static_cast<std::size_t>(patch)];
 }
@@ -426,9 +430,11 @@ double FormFactorEvaluator::contour_factor(std::span<const Vec3> receiver, int r
   // receiver, is no larger, and is cut only by an edge through its own sphere).
   thread_local std::vector<NearEdge> near;
   near.clear();
-  const auto [c, r] = vertex_sphere(receiver);
-  for (const NearEdge& e : floating_edges(receiver_patch))
-    if (e.distance(c) < 3.0 * r) near.push_back(e);
+  if (const std::vector<NearEdge>& floating = floating_edges(receiver_patch); !floating.empty()) {
+    const auto [c, r] = vertex_sphere(receiver);
+    for (const NearEdge& e : floating)
+      if (e.distance(c) < 3.0 * r) near.push_back(e);
+  }
   return receiver_gauss_factor(receiver, source, near, kLambertSumOnly, points);
 }
 

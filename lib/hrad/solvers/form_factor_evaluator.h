@@ -116,8 +116,8 @@ class FormFactorEvaluator {
   /// The polygons the factors will be taken to (the solver's elements or shooting patches), each
   /// on its patch: the contour rule grades a receiver's points towards their edges where their
   /// patch floats close in front of the receiver's, so that all of one receiver's factors share one
-  /// point set (closure) and each follows its source's near field. Call before the first factor;
-  /// without it, the patches' own edges.
+  /// point set (closure) and each follows its source's near field. Call before the first factor
+  /// (later, std::logic_error); without it, the patches' own edges.
   void set_sources(std::span<const std::span<const Vec3>> polygons, std::span<const int> patches);
 
   /// Factor from `receiver` (a polygon lying on patch `receiver_patch`) to `source` (on
@@ -243,6 +243,7 @@ class FormFactorEvaluator {
   mutable std::atomic<std::uint64_t> shaft_queries_{0};
   mutable std::atomic<std::uint64_t> culled_{0};
   mutable std::once_flag floating_once_;
+  mutable std::atomic<bool> floating_built_{false};  ///< set_sources() is refused from then on
   mutable std::vector<std::vector<std::vector<Vec3>>> sources_by_patch_;
   mutable std::vector<std::vector<NearEdge>> floating_edges_;
 };
