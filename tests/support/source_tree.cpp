@@ -7,11 +7,6 @@ const std::string& source_dir() {
   return dir;
 }
 
-const std::string& binary_dir() {
-  static const std::string dir = HRAD_BINARY_DIR;
-  return dir;
-}
-
 const std::string& hrad_executable() {
   static const std::string path = HRAD_EXECUTABLE;
   return path;

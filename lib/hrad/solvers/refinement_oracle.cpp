@@ -277,7 +277,7 @@ double ErrorBoundOracle::weight(NodeRef r) const {
 
 std::vector<char> ErrorBoundOracle::observe() {
   const std::size_t n = h_.size();
-  if (bfeps_only() || !(b_mean_.maxCoeff() > 0.0)) return std::vector<char>(n, 0);
+  if (!(tol_.feps > 0.0) || !(b_mean_.maxCoeff() > 0.0)) return std::vector<char>(n, 0);
   // Each element's brightest leaf, in units of B_mean (children have larger ids than their parent).
   std::vector<double> peak(n, 0.0);
   for (std::size_t i = n; i-- > 0;) {

@@ -173,7 +173,6 @@ class ErrorBoundOracle final : public RefinementOracle {
   Rgb b_mean_ = Rgb::Zero();  ///< mean_radiosity() of the scene
   /// Per element (as numbered when last observed): its weight then; empty before any observe().
   std::vector<double> observed_;
-  bool bfeps_only() const { return !(tol_.feps > 0.0); }
 };
 
 /// observe() raises an element's weight when its brightest leaf passes its weight by this factor.
