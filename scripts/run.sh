@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
-# The main job: installs what is missing, builds only the `hrad` command (Release; tests and
-# benchmarks build in scripts/test.sh), solves the bundled Cornell box with
+# The main job: installs what is missing for the `hrad` command alone (tests, benchmarks and plots
+# install and build in scripts/test.sh), builds only that command (Release), solves the bundled Cornell box with
 # hierarchical radiosity and writes out/cornell_box.ply (leaf mesh, vertex colours, per-element
 # radiosity), out/cornell_box.json (the solve report), out/cornell_box.png (the elements'
 # radiosity, Gouraud-shaded) and out/cornell_box_gathered.png with out/cornell_box_gathered.exr
 # (the picture by final gather at every pixel, and its linear values), then prints a summary.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/build.sh --target hrad_cli
+scripts/build.sh --command-only
 scene=notebooks_data/scenes/cornell_box.obj
 mkdir -p out
 build/bin/hrad info "$scene"

@@ -122,6 +122,7 @@ void add_figures_command(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->callback([args, cmd] {
     const std::set<int> only = parse_only(args->only);
+    require_plotting();
     // Without --scenes: the bundled scenes from the current folder (the repository root), else from
     // the source tree the executable was built in (build/bin/hrad -> notebooks_data/scenes), so that
     // `hrad figures` works from any folder.

@@ -1,5 +1,6 @@
 #include "plot.h"
 
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <cstdlib>
@@ -14,13 +15,42 @@ extern char** environ;
 
 namespace hrad::cli {
 
+namespace {
+
+std::string plot_python() {
+  const char* env_python = std::getenv("HRAD_PYTHON");
+  return env_python ? env_python : "/usr/bin/python3";
+}
+
+}  // namespace
+
+void require_plotting() {
+  const std::string python = plot_python();
+  std::vector<std::string> argv_s = {python, "-c", "import matplotlib"};
+  std::vector<char*> argv;
+  for (std::string& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t quiet;
+  posix_spawn_file_actions_init(&quiet);
+  posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&quiet, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  int status = 0;
+  const bool spawned = posix_spawn(&pid, python.c_str(), &quiet, nullptr, argv.data(), environ) == 0;
+  posix_spawn_file_actions_destroy(&quiet);
+  if (spawned) waitpid(pid, &status, 0);
+  if (!spawned || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw Error(fmt::format("{}: cannot import matplotlib, which the plots need: install it with "
+                            "scripts/install_deps.sh (Debian's python3-matplotlib)",
+                            python));
+}
+
 void run_plot(const std::string& script, const std::vector<std::string>& args) {
   namespace fs = std::filesystem;
   const fs::path exe = fs::read_symlink("/proc/self/exe");
   const std::string path = (exe.parent_path() / "plots" / script).string();
   if (!fs::is_regular_file(path)) throw Error(fmt::format("{}: plot script missing (rebuild hrad)", path));
-  const char* env_python = std::getenv("HRAD_PYTHON");
-  const std::string python = env_python ? env_python : "/usr/bin/python3";
+  const std::string python = plot_python();
   // Files this command writes are staged until its end (io/atomic_file.h): the script reads and
   // writes the staged temporaries, which the signal handler removes (and kills the script first).
   std::vector<std::string> argv_s = {python, path};

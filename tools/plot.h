@@ -9,5 +9,8 @@ namespace hrad::cli {
 
 /// Runs plots/`script` (beside the executable) with `args`; hrad::Error when it fails.
 void run_plot(const std::string& script, const std::vector<std::string>& args);
+/// hrad::Error unless the plots' Python can import matplotlib: called before long work that ends in
+/// plots (scripts/run.sh installs only what the solves and pictures need).
+void require_plotting();
 
 }  // namespace hrad::cli
