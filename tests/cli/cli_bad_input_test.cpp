@@ -283,6 +283,24 @@ TEST_P(CliBadInput, OneLineErrorNonZeroExitNothingWritten) {
 INSTANTIATE_TEST_SUITE_P(AllSubcommands, CliBadInput, ::testing::ValuesIn(kCases),
                          [](const auto& info) { return info.param.name; });
 
+// The commands that end in plots check that the plots' Python can import matplotlib before any work
+// (scripts/run.sh installs no matplotlib): one line naming the Python and how to install it, exit 1,
+// nothing written. HRAD_PYTHON stands for a Python without matplotlib.
+TEST(CliPlots, SweepAndFiguresWithoutMatplotlibStopBeforeTheirWork) {
+  for (const std::string command : {"sweep " + kScene + " --out {d}/sweep", std::string("figures --out {d}/figures")}) {
+    TempDir dir;
+    const RunResult r = run_hrad("--version >/dev/null; HRAD_PYTHON=/bin/false '" + test::hrad_executable() + "' " +
+                                     replace_all(command, "{d}", dir.root().string()),
+                                 dir);
+    EXPECT_EQ(r.exit_code, 1) << command << "\n" << r.err;
+    const auto lines = r.err_lines();
+    ASSERT_EQ(lines.size(), 1u) << command << "\n" << r.err;
+    EXPECT_EQ(lines[0].rfind("hrad: error: /bin/false: cannot import matplotlib", 0), 0u) << lines[0];
+    EXPECT_NE(lines[0].find("scripts/install_deps.sh"), std::string::npos) << lines[0];
+    EXPECT_EQ(dir.entries(), 0u) << command << ": an output (or temporary) file was left behind";
+  }
+}
+
 // A 4000-polygon office needs ~250 MB at its peak (640 k links). Under a 250 MB address space the
 // estimate (links per element and bytes per link measured on offices, work_estimate.h) refuses it
 // before any work. Under 300 MB the estimate fits (it is an average, not a bound) but the work does
