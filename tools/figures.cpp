@@ -122,7 +122,6 @@ void add_figures_command(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->callback([args, cmd] {
     const std::set<int> only = parse_only(args->only);
-    require_plotting();
     // Without --scenes: the bundled scenes from the current folder (the repository root), else from
     // the source tree the executable was built in (build/bin/hrad -> notebooks_data/scenes), so that
     // `hrad figures` works from any folder.
@@ -137,6 +136,7 @@ void add_figures_command(CLI::App& app) {
       args->scenes = beside.string();
     }
     if (args->threads < 0) throw Error(fmt::format("--threads must be >= 0, got {}", args->threads));
+    require_plotting();  // after the option checks, before any work: every figure ends in a plot
     const std::string dir = args->out;
     // Every file goes into a staging folder and is renamed into DIR at the end (io/atomic_file.h).
     OutputFiles outputs;

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <cstdlib>
 #include <filesystem>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -22,27 +23,36 @@ std::string plot_python() {
   return env_python ? env_python : "/usr/bin/python3";
 }
 
+// Starts `argv` (argv[0] is the program); false when it cannot be started. `quiet`: its output goes
+// to /dev/null.
+bool spawn(std::vector<std::string> argv_s, bool quiet, pid_t* pid) {
+  std::vector<char*> argv;
+  for (std::string& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (quiet) {
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  }
+  const bool spawned = posix_spawn(pid, argv[0], &actions, nullptr, argv.data(), environ) == 0;
+  posix_spawn_file_actions_destroy(&actions);
+  return spawned;
+}
+
 }  // namespace
 
 void require_plotting() {
   const std::string python = plot_python();
-  std::vector<std::string> argv_s = {python, "-c", "import matplotlib"};
-  std::vector<char*> argv;
-  for (std::string& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t quiet;
-  posix_spawn_file_actions_init(&quiet);
-  posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&quiet, 2, "/dev/null", O_WRONLY, 0);
   pid_t pid = 0;
   int status = 0;
-  const bool spawned = posix_spawn(&pid, python.c_str(), &quiet, nullptr, argv.data(), environ) == 0;
-  posix_spawn_file_actions_destroy(&quiet);
+  const bool spawned = spawn({python, "-c", "import matplotlib"}, true, &pid);
   if (spawned) waitpid(pid, &status, 0);
   if (!spawned || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw Error(fmt::format("{}: cannot import matplotlib, which the plots need: install it with "
-                            "scripts/install_deps.sh (Debian's python3-matplotlib)",
-                            python));
+    throw Error(
+        fmt::format("{}: cannot import matplotlib, which the plots need: install it with "
+                    "scripts/install_deps.sh (Debian's python3-matplotlib)",
+                    python));
 }
 
 void run_plot(const std::string& script, const std::vector<std::string>& args) {
@@ -55,11 +65,8 @@ void run_plot(const std::string& script, const std::vector<std::string>& args) {
   // writes the staged temporaries, which the signal handler removes (and kills the script first).
   std::vector<std::string> argv_s = {python, path};
   for (const std::string& a : args) argv_s.push_back(staged_path(a));
-  std::vector<char*> argv;
-  for (std::string& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
   pid_t pid = 0;
-  if (posix_spawn(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ) != 0)
+  if (!spawn(std::move(argv_s), false, &pid))
     throw Error(
         fmt::format("{}: cannot run (plots need Debian's python3 with matplotlib: scripts/install_deps.sh)", python));
   set_output_child(pid);

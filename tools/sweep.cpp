@@ -121,7 +121,6 @@ void add_sweep_command(CLI::App& app) {
     if (!args->reference_from.empty() && args->reference_elements > 0)
       throw Error("--reference-from and --reference-elements exclude each other (the reference is read, not solved)");
     if (args->threads < 0) throw Error(fmt::format("--threads must be >= 0, got {}", args->threads));
-    require_plotting();
     // The reference uses 4x: at most the solvers' kMaxVisibilitySamples.
     if (args->visibility_samples < 0 || args->visibility_samples > kMaxVisibilitySamples / 4)
       throw Error(fmt::format("--visibility-samples must be in [0, {}], got {}", kMaxVisibilitySamples / 4,
@@ -154,6 +153,7 @@ void add_sweep_command(CLI::App& app) {
     inputs.clear();
     for (const std::string& f : scene.files) inputs.emplace_back("an input of the scene", f);
     outputs.check_inputs(inputs);
+    require_plotting();  // last of the checks: the sweep ends in its plot
 
     SweepOptions options;
     options.samples_per_patch = args->samples;
