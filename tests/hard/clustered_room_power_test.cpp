@@ -88,9 +88,7 @@ TEST(ClusteredRoomPower, ClosedRoomsWithBlocksBalancePower) {
 
 // Guarantee: a closed room of tessellated walls where every patch emits E with one reflectance rho
 // is uniform, clustered at the defaults: every patch within 1% of E / (1 - rho), for rooms of other
-// shapes and cell sizes. (With blocks in the room, a cluster link shares what it brings among a
-// cluster's patches by an estimate of each patch's factor, and some cells stray by up to 2.4%:
-// README, "Limits".)
+// shapes and cell sizes. (With blocks in the room, visibility is sampled: see the next test.)
 TEST(ClusteredRoomPower, UniformClosedRoomsAreUniformPerPatch) {
   const double rho = 0.7;
   for (const auto& [a, b, c, cell] : {std::tuple{5.0, 3.2, 6.0, 0.5}, std::tuple{8.0, 2.5, 3.0, 0.4}}) {
@@ -101,6 +99,32 @@ TEST(ClusteredRoomPower, UniformClosedRoomsAreUniformPerPatch) {
     const Solution sol = solved(s);
     for (std::size_t i = 0; i < s.patches.size(); ++i)
       EXPECT_NEAR(sol.patch_radiosity[i][0] * (1 - rho), 1.0, 0.01) << i;
+  }
+}
+
+// Guarantee: with blocks floating in it, a uniform closed room stays uniform but for sampling noise:
+// the area-weighted mean of B (1 - rho) / E - 1 within 1e-3 and its root mean square within 0.4%,
+// clustered at the defaults, for rooms of other shapes, cell sizes and clutter. A cluster end shares
+// what a link brings among its patches by their own sampled factors to the other end (hsa_links.h);
+// shared by a deterministic estimate of each patch's factor (its factor to the other end's bounding
+// sphere), the same rooms came out at 0.49-0.60% rms, cells beside the blocks up to 2.6% off.
+TEST(ClusteredRoomPower, UniformClosedRoomsWithBlocksStayUniform) {
+  const double rho = 0.7;
+  for (const auto& [a, b, c, cell, slots] : {std::tuple{5.0, 3.2, 6.0, 0.5, 3}, std::tuple{8.0, 2.5, 3.0, 0.4, 4},
+                                             std::tuple{6.0, 3.0, 4.5, 0.45, 3}}) {
+    const Scene s = cluttered_room(a, b, c, cell, slots, 1,
+                                   {test::material(Rgb::Constant(rho), Rgb::Constant(1.0), "wall"),
+                                    test::material(Rgb::Constant(rho), Rgb::Constant(1.0), "lamp")});
+    SCOPED_TRACE(::testing::Message() << a << " x " << b << " x " << c << ", " << s.patches.size() << " patches");
+    const Solution sol = solved(s);
+    double mean = 0.0, square = 0.0;
+    for (std::size_t i = 0; i < s.patches.size(); ++i) {
+      const double d = sol.patch_radiosity[i][0] * (1 - rho) - 1.0;
+      mean += s.patches[i].area * d;
+      square += s.patches[i].area * d * d;
+    }
+    EXPECT_LT(std::abs(mean / s.total_area()), 1e-3);
+    EXPECT_LT(std::sqrt(square / s.total_area()), 4e-3);
   }
 }
 

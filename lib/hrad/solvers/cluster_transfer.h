@@ -61,11 +61,13 @@ class ClusterTransfer {
   /// appended to `per_area`; returns W = sum A_j q_j. kGets: q_j = F(dA at j's centroid -> the other
   /// end's bounding sphere) (point_to_sphere()) times the other end's projected area towards j over
   /// its largest (its axis sums, Cluster::axis_plus: exact for axis-aligned contents) times the part
-  /// of the other end j sees (ShadedPatch::visible in `shaded`); patch j gets A_j q_j / W of what the
-  /// link brings. Unlike projected areas towards the other end's centre, this follows each patch's
+  /// of the other end j sees (ShadedPatch::visible in `shaded`): a deterministic estimate of j's
+  /// factor, by which the refinement bounds a patch's share and an end gets what the link brings
+  /// where none of its own rays reached the other end. Unlike projected areas towards the other end's centre, this follows each patch's
   /// own position, the other end's extent and which way the other end faces: a ceiling lamp level
   /// with a far cluster's centre still sees its lower half. kSends: q_j = j's sampled factor to the
-  /// other end (ShadedPatch::factor; 0 when not listed), what j sends per unit radiosity over A_j.
+  /// other end (ShadedPatch::factor; 0 when not listed), what j sends per unit radiosity over A_j,
+  /// and by reciprocity the weight by which j gets a share of what the link brings.
   double link_weights(NodeRef r, NodeRef other, const ShadedPatches* shaded, std::vector<float>* per_area,
                       LinkWeights kind = LinkWeights::kGets) const;
   /// Removes from `shaded` the patches of r whose q_j above is 0 whatever they see (facing wholly

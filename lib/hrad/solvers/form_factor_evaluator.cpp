@@ -314,7 +314,7 @@ FormFactorEstimate FormFactorEvaluator::sampled(const SurfaceSampler& p, const S
 }
 
 ShadedPatches FormFactorEvaluator::shaded_surfaces(const SurfaceSampler& from, const SurfaceSampler& to, int rays,
-                                                   std::uint64_t seed) const {
+                                                   std::uint64_t seed, std::vector<int>* reached) const {
   ShadedPatches shaded;
   detail::Rng rng(seed);
   for (int k = 0; k < from.patch_count(); ++k) {
@@ -324,13 +324,17 @@ ShadedPatches FormFactorEvaluator::shaded_surfaces(const SurfaceSampler& from, c
     double weight = 0.0, seen = 0.0;
     for (int r = 0; r < rays; ++r) {
       px = from.sample_patch(k, rng.uniform(), rng.uniform(), &x);
-      const int py = to.sample(rng.uniform(), rng.uniform(), rng.uniform(), &y);
+      // Stratified over `to`'s area: each ray its own share of the other end's patches.
+      const int py = to.sample((r + rng.uniform()) / rays, rng.uniform(), rng.uniform(), &y);
       if (px == py) continue;
       const Vec3& ny = scene_.patches[static_cast<std::size_t>(py)].normal;
       const double kernel = detail::point_pair_kernel(nx, ny, y - x);
       if (!(kernel > 0.0)) continue;
       weight += kernel;
-      if (!effects_.visibility || visibility_->sight(x, px, y, py) == Sight::kVisible) seen += kernel;
+      if (!effects_.visibility || visibility_->sight(x, px, y, py) == Sight::kVisible) {
+        seen += kernel;
+        if (reached != nullptr) reached->push_back(py);
+      }
     }
     shaded.push_back({px, weight > 0.0 ? static_cast<float>(seen / weight) : 0.0f,
                       static_cast<float>(to.area() * seen / (std::numbers::pi * rays))});

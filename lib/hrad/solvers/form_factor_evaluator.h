@@ -191,9 +191,10 @@ class FormFactorEvaluator {
   /// A_to sum k V / (pi rays), an unbiased estimate of F(patch -> to); sorted. A patch behind a
   /// closed surface never sees through it, whatever the rays: a cluster link must give it nothing;
   /// a patch half hidden by furniture inside its own cluster must get half of an unobstructed
-  /// patch's share (hsa_links.h).
+  /// patch's share (hsa_links.h). `reached`, when given, gets the patch of `to` at the far end of
+  /// every ray that passed.
   ShadedPatches shaded_surfaces(const SurfaceSampler& from, const SurfaceSampler& to, int rays,
-                                std::uint64_t seed) const;
+                                std::uint64_t seed, std::vector<int>* reached = nullptr) const;
 
   /// Deterministic seed for sampling a pair of polygons on patches pa and pb (from their geometry,
   /// relative to their patches: a scaled scene draws the same samples).

@@ -65,12 +65,15 @@ HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, co
     auto end_weights = [&](NodeRef end, NodeRef other, const ShadedPatches* shaded) {
       EndWeights e;
       if (!is_cluster(end)) return e;
-      e.gets = weights_.size();
-      e.w_gets = geometry.link_weights(end, other, shaded, &weights_, LinkWeights::kGets);
       e.sends = weights_.size();
       const double w_sends = geometry.link_weights(end, other, shaded, &weights_, LinkWeights::kSends);
-      // An end none of whose patches faces the other end's sphere gets by what its patches send.
-      if (!(e.w_gets > 0.0)) e.gets = e.sends, e.w_gets = w_sends;
+      if (w_sends > 0.0) {
+        e.gets = e.sends, e.w_gets = w_sends;
+        return e;
+      }
+      // No ray of the end's own reached the other end: by the patches' facing weights.
+      e.gets = weights_.size();
+      e.w_gets = geometry.link_weights(end, other, shaded, &weights_, LinkWeights::kGets);
       return e;
     };
     const EndWeights end_p = end_weights(l.p, l.q, l.hidden_p.get());
