@@ -42,6 +42,7 @@ function(hrad_test name)
   # With the standard headers precompiled, GCC 12 no longer treats std::string's inlined copies as
   # system code and reports its known false positive (GCC bug 105329) in tests that build strings.
   target_compile_options(${name}_test PRIVATE $<$<CXX_COMPILER_ID:GNU>:-Wno-stringop-overflow>)
+  target_compile_options(${name}_test PRIVATE ${HRAD_LIGHT_OPTIMIZATION})
   set(labels unit)
   if(ARG_LABELS)
     set(labels ${ARG_LABELS})
