@@ -187,20 +187,27 @@ SETTINGS = [
     ('splash_test', 'hrad', 'aeps total/100', 1 / 100),
     ('splash_test', 'hrad', 'defaults', None),
     ('splash_test', 'hrad', 'aeps total/4000', 1 / 4000),
+    ('splash_test', 'hrad', 'linear basis', (None, ['--basis', 'linear'])),
     ('splash_room', 'SPLASH-2', 'defaults', []),
     ('splash_room', 'hrad', 'aeps total/250', 1 / 250),
+    ('splash_room', 'hrad', 'linear, total/250, feps 0.04, 16 samples',
+     (1 / 250, ['--basis', 'linear'] + ['--feps', '0.04', '--visibility-samples', '16'])),
     ('splash_room', 'hrad', 'defaults', None),
+    ('splash_room', 'hrad', 'linear basis', (None, ['--basis', 'linear'])),
     ('rpk_cube', 'rpkCpp', 'link error 1e-4', ['-gr-link-error-threshold', '1e-4']),
     ('rpk_cube', 'rpkCpp', 'defaults (1e-5)', []),
     ('rpk_cube', 'rpkCpp', 'link error 1e-6', ['-gr-link-error-threshold', '1e-6']),
     ('rpk_cube', 'hrad', 'aeps total/100', 1 / 100),
     ('rpk_cube', 'hrad', 'defaults', None),
     ('rpk_cube', 'hrad', 'aeps total/4000', 1 / 4000),
+    ('rpk_cube', 'hrad', 'linear basis', (None, ['--basis', 'linear'])),
     ('rpk_office2', 'rpkCpp', 'link error 1e-4', ['-gr-link-error-threshold', '1e-4']),
     ('rpk_office2', 'rpkCpp', 'defaults (1e-5)', []),
     ('rpk_office2', 'rpkCpp', 'link error 1e-6', ['-gr-link-error-threshold', '1e-6']),
     ('rpk_office2', 'hrad', 'aeps total/100', 1 / 100),
     ('rpk_office2', 'hrad', 'defaults', None),
+    ('rpk_office2', 'hrad', 'linear, aeps total/100', (1 / 100, ['--basis', 'linear'])),
+    ('rpk_office2', 'hrad', 'linear basis', (None, ['--basis', 'linear'])),
 ]
 SPLASH_SCENE = {'splash_test': ['-batch'], 'splash_room': ['-batch', '-room']}
 RPK_SCENE = {'rpk_cube': 'etc/cube.mgf', 'rpk_office2': 'etc/office2/office2.mgf'}
@@ -303,8 +310,10 @@ def total_area(hrad, obj):
                                      text=True).stdout)['area']
 
 
-def hrad_cmd(hrad, obj, aeps_fraction, area, report, threads):
-    cmd = [hrad, 'solve', obj, '--quiet', '--threads', str(threads), '--report', report]
+def hrad_cmd(hrad, obj, setting, area, report, threads):
+    """setting: None (the defaults), an aeps fraction of the total area, or (fraction or None, [options])."""
+    aeps_fraction, options = setting if isinstance(setting, tuple) else (setting, [])
+    cmd = [hrad, 'solve', obj, '--quiet', '--threads', str(threads), '--report', report] + options
     return cmd + (['--aeps', '%.9g' % (aeps_fraction * area)] if aeps_fraction is not None else [])
 
 
