@@ -63,9 +63,9 @@ class ClusterTransfer {
   /// its largest (its axis sums, Cluster::axis_plus: exact for axis-aligned contents) times the part
   /// of the other end j sees (ShadedPatch::visible in `shaded`): a deterministic estimate of j's
   /// factor, by which the refinement bounds a patch's share and an end gets what the link brings
-  /// where none of its own rays reached the other end. Unlike projected areas towards the other end's centre, this follows each patch's
-  /// own position, the other end's extent and which way the other end faces: a ceiling lamp level
-  /// with a far cluster's centre still sees its lower half. kSends: q_j = j's sampled factor to the
+  /// where none of its own rays reached the other end. Unlike projected areas towards the other
+  /// end's centre, this follows each patch's own position, the other end's extent and which way the
+  /// other end faces: a ceiling lamp level with a far cluster's centre still sees its lower half. kSends: q_j = j's sampled factor to the
   /// other end (ShadedPatch::factor; 0 when not listed), what j sends per unit radiosity over A_j,
   /// and by reciprocity the weight by which j gets a share of what the link brings.
   double link_weights(NodeRef r, NodeRef other, const ShadedPatches* shaded, std::vector<float>* per_area,

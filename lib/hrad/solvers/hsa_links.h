@@ -53,7 +53,7 @@ class HsaLinks final : public LinkOperator {
   /// A_j q_j, so nothing the link carries is lost. Only where none of the end's rays reached the
   /// other end, by each patch's factor to the other end's bounding sphere times the part of the
   /// other end it sees (Sillion 1995's oriented clusters, per patch): such a deterministic estimate
-  /// of the factor misplaced up to 2.4% of a cell's radiosity beside blocks in a uniform closed room
+  /// of the factor misplaced up to 2.6% of a cell's radiosity beside blocks in a uniform closed room
   /// (tests/hard/clustered_room_power_test.cpp). An element source sends A_R F B through its factor F.
   struct ClusterLink {
     std::int32_t source;
