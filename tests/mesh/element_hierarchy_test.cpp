@@ -48,6 +48,53 @@ TEST(ElementHierarchy, UniformSubdivisionAreasSumToPatchArea) {
   for (NodeId id : tri) EXPECT_NEAR(h.node(id).area, s.patches[1].area / double(tri.size()), 1e-12);
 }
 
+// Half the ratio of a quad's two mid-line lengths, max over both orders: its aspect.
+double aspect(const ElementNode& n) {
+  const auto& v = n.vertices;
+  const double u = ((v[1] + v[2]) - (v[3] + v[0])).norm(), w = ((v[2] + v[3]) - (v[0] + v[1])).norm();
+  return std::max(u / w, w / u);
+}
+
+Vec3 bilinear(const ElementNode& n, double u, double v) {
+  const auto& p = n.vertices;
+  return (1 - u) * (1 - v) * p[0] + u * (1 - v) * p[1] + u * v * p[2] + (1 - u) * v * p[3];
+}
+
+TEST(ElementHierarchy, LongQuadsSplitAcrossTheirLengthAndElementsStayWithinTheStripAspect) {
+  // Two irregular quads about 60 : 1, long along u and along v, and two rectangles either side of
+  // the threshold.
+  const Scene s = make_scene(
+      {quad({0, 0, 0}, {60, 0, 0}, {59, 1.5, 0}, {1, 0.5, 0}), quad({0, 0, 1}, {1.2, 0, 1}, {1.5, 61, 1}, {0, 60, 1}),
+       quad({0, 0, 2}, {16, 0, 2}, {16, 1, 2}, {0, 1, 2}), quad({0, 0, 3}, {16.5, 0, 3}, {16.5, 1, 3}, {0, 1, 3})});
+  ElementHierarchy h(s);
+  EXPECT_EQ(split_kind_of(h.node(0)), SplitKind::kStripsU);
+  EXPECT_EQ(split_kind_of(h.node(1)), SplitKind::kStripsV);
+  EXPECT_EQ(split_kind_of(h.node(2)), SplitKind::kQuadrants);  // 16 : 1 keeps its shape
+  EXPECT_EQ(split_kind_of(h.node(3)), SplitKind::kStripsU);
+  for (int p = 0; p < 4; ++p) h.subdivide_uniform(h.root(p), s.patches[static_cast<std::size_t>(p)].area / 1000.0);
+  for (int p = 0; p < 4; ++p) {
+    EXPECT_NEAR(leaf_area_sum(h, p), s.patches[static_cast<std::size_t>(p)].area, 1e-12 * s.patches[p].area);
+    for (NodeId id : h.leaves(p)) {
+      EXPECT_LT(aspect(h.node(id)), kStripAspect * 1.05) << "patch " << p << " leaf " << id;
+      EXPECT_GT(newell_normal(h.node(id).polygon()).dot(s.patches[static_cast<std::size_t>(p)].normal), 0.0);
+    }
+  }
+  // Each child is the parent's bilinear map on quad_child_uv() (what push_pull's restriction assumes).
+  std::set<SplitKind> kinds;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const ElementNode& n = h.node(static_cast<NodeId>(i));
+    if (n.is_leaf()) continue;
+    kinds.insert(n.split);
+    for (int k = 0; k < 4; ++k) {
+      const std::array<std::array<double, 2>, 4> uv = quad_child_uv(n.split, k);
+      for (int m = 0; m < 4; ++m)
+        EXPECT_LT((h.node(n.first_child + k).vertices[m] - bilinear(n, uv[m][0], uv[m][1])).norm(), 1e-12)
+            << "node " << i << " child " << k << " corner " << m;
+    }
+  }
+  EXPECT_EQ(kinds.size(), 3u);
+}
+
 TEST(ElementHierarchy, SplitIsIdempotentAndInheritsMaterial) {
   Scene s = make_scene({quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0})});
   s.materials[0].emission = Rgb(1, 2, 3);

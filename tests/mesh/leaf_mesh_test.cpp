@@ -109,6 +109,26 @@ TEST(LeafMesh, RandomRefinementAcrossJunctionsCreasesAndTrianglesIsCrackFree) {
   }
 }
 
+TEST(LeafMesh, LongPatchesCutIntoStripsAreCrackFree) {
+  // A 32 x 1 strip of floor along a 32 x 32 square, a 1 x 20 wall standing on the strip's end and
+  // facing it (a crease) and a 32 x 1.5 floor, long along v, beside the strip's other long edge:
+  // strips put three points on each long edge at once, which the neighbours' loops must hold, and
+  // the neighbours' own splits must find them again.
+  const Scene s = make_scene({{{0, 0, 0}, {32, 0, 0}, {32, 1, 0}, {0, 1, 0}},
+                              {{0, 1, 0}, {32, 1, 0}, {32, 33, 0}, {0, 33, 0}},
+                              {{32, 0, 0}, {32, 0, 20}, {32, 1, 20}, {32, 1, 0}},
+                              {{32, -1.5, 0}, {32, 0, 0}, {0, 0, 0}, {0, -1.5, 0}}});
+  for (const unsigned seed : {7u, 8u}) {
+    ElementHierarchy h(s);
+    EXPECT_EQ(h.node(h.split(0)).vertices[1], Vec3(8, 0, 0));  // strips: u in [0, 1/4]
+    EXPECT_EQ(h.to_solution().faces[4].size(), 7u);            // the square holds the 3 T-vertices
+    refine_at_random(h, 120, seed);
+    expect_faces_hold_their_boundary(h);
+    h.balance();
+    expect_faces_hold_their_boundary(h);
+  }
+}
+
 TEST(LeafMesh, CopiesRefineApart) {
   ElementHierarchy h(junctions_scene());
   refine_at_random(h, 20, 4);

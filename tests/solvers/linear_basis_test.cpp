@@ -105,6 +105,33 @@ TEST(LinearBasis, MomentsOfALinearFieldAreItsIntegralsAgainstTheBasis) {
   }
 }
 
+TEST(LinearBasis, RestrictionToEachChildIsTheParentsBiquadraticAtTheChildsPoints) {
+  // The push's two-scale relation (push_pull.h restrict_to_child()): for quadrants and for strips
+  // across u or v, child k's 9 values are the parent's biquadratic field, here a fixed polynomial
+  // with every monomial u^a v^b (a, b <= 2), at the child's points, which lie at the parent's (u, v)
+  // on quad_child_uv(kind, k) under the child's own bilinear map.
+  auto field = [](double u, double v) {
+    return 0.3 + 1.1 * u - 0.7 * v + 2.0 * u * v - 1.3 * u * u + 0.4 * v * v + 0.9 * u * u * v - 0.6 * u * v * v +
+           0.25 * u * u * v * v;
+  };
+  std::array<double, 9> parent{};
+  for (int i = 0; i < 9; ++i) parent[static_cast<std::size_t>(i)] = field(kSimpsonQuadUv[i][0], kSimpsonQuadUv[i][1]);
+  for (const SplitKind kind : {SplitKind::kQuadrants, SplitKind::kStripsU, SplitKind::kStripsV})
+    for (int k = 0; k < 4; ++k) {
+      const std::array<double, 9> child = restrict_to_child(parent, 4, kind, k);
+      const std::array<std::array<double, 2>, 4> c = quad_child_uv(kind, k);
+      for (int j = 0; j < 9; ++j) {
+        const double a = kSimpsonQuadUv[j][0], b = kSimpsonQuadUv[j][1];
+        const double w[4] = {(1 - a) * (1 - b), a * (1 - b), a * b, (1 - a) * b};
+        double u = 0.0, v = 0.0;
+        for (int m = 0; m < 4; ++m)
+          u += w[m] * c[static_cast<std::size_t>(m)][0], v += w[m] * c[static_cast<std::size_t>(m)][1];
+        EXPECT_NEAR(child[static_cast<std::size_t>(j)], field(u, v), 1e-13)
+            << "kind " << static_cast<int>(kind) << " child " << k << " point " << j;
+      }
+    }
+}
+
 TEST(LinearBasis, BernsteinWeightingAveragesTheSourcesRadiosity) {
   // A source's kernel towards a receiver beside one of its edges: 1 at the edge's three points, 0
   // elsewhere. The source's radiosity is 0 on the half at that edge and 1 on the other: its exact

@@ -62,10 +62,11 @@ void receiver_gauss_points(std::span<const Vec3> p, const Vec3& n, std::vector<d
 
 namespace {
 
-// True when some near edge passes within `radius` of `centre` (through a cell's bounding sphere).
-bool near_edge_within(const Vec3& centre, double radius, std::span<const NearEdge> near) {
+// True when some near edge that grades cells of this depth passes within `radius` of `centre`
+// (through a cell's bounding sphere).
+bool near_edge_within(const Vec3& centre, double radius, int depth, std::span<const NearEdge> near) {
   for (const NearEdge& e : near)
-    if (e.distance(centre) < radius) return true;
+    if (depth < e.max_depth && e.distance(centre) < radius) return true;
   return false;
 }
 
@@ -89,7 +90,7 @@ void graded_quad_cell(std::span<const Vec3> p, double u0, double u1, double v0, 
   double radius = 0.0;
   for (const auto& [u, v] : {std::pair{u0, v0}, {u1, v0}, {u1, v1}, {u0, v1}})
     radius = std::max(radius, (bilinear(p, u, v) - centre).norm());
-  if (depth < kMaxNearDepth && near_edge_within(centre, radius, near)) {
+  if (near_edge_within(centre, radius, depth, near)) {
     const double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
     graded_quad_cell(p, u0, um, v0, vm, depth + 1, near, g, out);
     graded_quad_cell(p, um, u1, v0, vm, depth + 1, near, g, out);
@@ -113,7 +114,7 @@ void graded_triangle(const Vec3& a, const Vec3& b, const Vec3& c, int depth, std
                      std::vector<detail::WeightedPoint>& out) {
   const Vec3 centre = (a + b + c) / 3.0;
   const double radius = std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()});
-  if (depth < kMaxNearDepth && near_edge_within(centre, radius, near)) {
+  if (near_edge_within(centre, radius, depth, near)) {
     const Vec3 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
     graded_triangle(a, ab, ca, depth + 1, near, out);
     graded_triangle(ab, b, bc, depth + 1, near, out);

@@ -41,6 +41,39 @@ ElementHierarchy& ElementHierarchy::operator=(const ElementHierarchy& other) {
   return *this;
 }
 
+SplitKind split_kind_of(const ElementNode& n) {
+  if (n.vertex_count != 4) return SplitKind::kQuadrants;
+  const auto& v = n.vertices;
+  // Lengths across the quad between its opposite edges' midpoints: along u (edge 3 to edge 1) and
+  // along v (edge 0 to edge 2).
+  const double along_u = ((v[1] + v[2]) - (v[3] + v[0])).norm();
+  const double along_v = ((v[2] + v[3]) - (v[0] + v[1])).norm();
+  if (along_u > kStripAspect * along_v) return SplitKind::kStripsU;
+  if (along_v > kStripAspect * along_u) return SplitKind::kStripsV;
+  return SplitKind::kQuadrants;
+}
+
+std::array<std::array<double, 2>, 4> quad_child_uv(SplitKind kind, int child) {
+  const double a = 0.25 * child, b = 0.25 * (child + 1);
+  switch (kind) {
+    case SplitKind::kStripsU:
+      return {{{a, 0.0}, {b, 0.0}, {b, 1.0}, {a, 1.0}}};
+    case SplitKind::kStripsV:
+      return {{{0.0, a}, {1.0, a}, {1.0, b}, {0.0, b}}};
+    default: {
+      // Parent corner k, the midpoint of edge k, the centre, the midpoint of edge k - 1.
+      static constexpr double kCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+      const double* c = kCorner[child];
+      const double* n = kCorner[(child + 1) % 4];
+      const double* p = kCorner[(child + 3) % 4];
+      return {{{c[0], c[1]},
+               {0.5 * (c[0] + n[0]), 0.5 * (c[1] + n[1])},
+               {0.5, 0.5},
+               {0.5 * (c[0] + p[0]), 0.5 * (c[1] + p[1])}}};
+    }
+  }
+}
+
 NodeId ElementHierarchy::split(NodeId id) {
   if (!node(id).is_leaf()) return node(id).first_child;
   const ElementNode parent = node(id);  // copy: push_back may reallocate
@@ -50,7 +83,18 @@ NodeId ElementHierarchy::split(NodeId id) {
   const auto& v = parent.vertices;
   std::array<std::array<Vec3, 4>, 4> child{};
   int count = parent.vertex_count;
-  if (count == 4) {
+  const SplitKind kind = split_kind_of(parent);
+  if (kind == SplitKind::kStripsU) {
+    // Child k: u in [k/4, (k+1)/4], between the quarter points of edge 0 (v0 -> v1) and of edge 2
+    // read from v3 to v2.
+    for (int k = 0; k < 4; ++k)
+      child[k] = {detail::quarter_point(v[0], v[1], k), detail::quarter_point(v[0], v[1], k + 1),
+                  detail::quarter_point(v[3], v[2], k + 1), detail::quarter_point(v[3], v[2], k)};
+  } else if (kind == SplitKind::kStripsV) {
+    for (int k = 0; k < 4; ++k)
+      child[k] = {detail::quarter_point(v[0], v[3], k), detail::quarter_point(v[1], v[2], k),
+                  detail::quarter_point(v[1], v[2], k + 1), detail::quarter_point(v[0], v[3], k + 1)};
+  } else if (count == 4) {
     const Vec3 c = (v[0] + v[1] + v[2] + v[3]) * 0.25;
     for (int k = 0; k < 4; ++k) {
       const int next = (k + 1) % 4, prev = (k + 3) % 4;
@@ -78,7 +122,8 @@ NodeId ElementHierarchy::split(NodeId id) {
     nodes_.push_back(n);
   }
   node(id).first_child = first;
-  mesh_->split(id, first);
+  node(id).split = kind;
+  mesh_->split(id, first, kind);
   return first;
 }
 

@@ -27,6 +27,19 @@ class LeafMesh;
 using NodeId = std::int32_t;
 inline constexpr NodeId kNoNode = -1;
 
+/// How ElementHierarchy::split() cuts a node. A quad whose length between one pair of opposite edges
+/// exceeds kStripAspect times its length between the other pair is cut across the long direction
+/// into four strips (kStripsU: u in [k/4, (k+1)/4] of its map x(u, v), simpson_rule.h; kStripsV:
+/// v), so that repeated splits bring any element within kStripAspect : 1; every other node is cut
+/// into quadrants, which keep the parent's shape (the quadtree of Hanrahan, Salzman & Aupperle
+/// 1991). A very long element puts its quadrature points and its constant (or linear) radiosity far
+/// from where a nearby kernel peaks along it (a corridor's wall beside its end wall). Quadrants halve
+/// both directions, and the field may vary across an element's width as much as along it: the 14 : 1
+/// sides of RenderPark's office2 lamp housings are lit on their lower part only, and cut into strips
+/// they left the housings' tops 32% too bright at aeps total/4000 (quadrants: 19%).
+enum class SplitKind : std::uint8_t { kQuadrants, kStripsU, kStripsV };
+inline constexpr double kStripAspect = 16.0;
+
 /// One element: a convex planar triangle or quad lying on one patch.
 struct ElementNode {
   std::array<Vec3, 4> vertices{};  ///< counter-clockwise seen from the patch's front; [3] unused for triangles
@@ -34,8 +47,9 @@ struct ElementNode {
   double area = 0.0;
   int patch = -1;  ///< index into Scene::patches
   NodeId parent = kNoNode;
-  NodeId first_child = kNoNode;  ///< the 4 children are first_child .. first_child + 3; kNoNode for a leaf
-  int depth = 0;                 ///< 0 for a patch's root
+  NodeId first_child = kNoNode;             ///< the 4 children are first_child .. first_child + 3; kNoNode for a leaf
+  int depth = 0;                            ///< 0 for a patch's root
+  SplitKind split = SplitKind::kQuadrants;  ///< how the children cut it (kQuadrants for a leaf)
 
   Rgb radiosity = Rgb::Zero();    ///< B: the unknown, per channel
   Rgb emission = Rgb::Zero();     ///< E: the patch's emission (copied down at construction and split)
@@ -47,6 +61,14 @@ struct ElementNode {
   bool is_leaf() const { return first_child == kNoNode; }
   std::span<const Vec3> polygon() const { return {vertices.data(), static_cast<std::size_t>(vertex_count)}; }
 };
+
+/// How split() cuts `n` (SplitKind; a triangle is kQuadrants: its four children at its edge midpoints).
+SplitKind split_kind_of(const ElementNode& n);
+
+/// The corners, in the parent's (u, v) (simpson_rule.h kSimpsonQuadUv), of child k of a quad split
+/// as `kind`, in the child's vertex order: the child's own bilinear map is the parent's on that
+/// rectangle of (u, v).
+std::array<std::array<double, 2>, 4> quad_child_uv(SplitKind kind, int child);
 
 /// Arena of quadtrees. Node i < scene.patches.size() is the root of patch i (root(patch) == patch);
 /// children are appended in blocks of 4. Not thread-safe for split(); reading nodes and writing
@@ -73,12 +95,14 @@ class ElementHierarchy {
   const std::vector<ElementNode>& nodes() const { return nodes_; }
 
   /// Splits a leaf 1-to-4 and returns its first child; returns the existing first child if `id`
-  /// is already split. A quad is split at its edge midpoints and its vertex mean, a triangle at
-  /// its edge midpoints (the middle child is the triangle of the three midpoints). Children inherit
-  /// emission, reflectance and radiosity; their areas sum to the parent's (to rounding).
-  /// Child k of a quad keeps parent vertex k as its vertex k, so each child is counter-clockwise.
-  /// The leaf's face is cut in place; an edge the neighbour across has split already gives its
-  /// midpoint vertex, otherwise the new midpoint joins the neighbour's face as its T-vertex.
+  /// is already split. A quad is split by split_kind_of(): into quadrants at its edge midpoints and
+  /// its vertex mean (child k keeps parent vertex k as its vertex k), or into four strips at the
+  /// quarter points of its two long edges (child k spans quad_child_uv(kind, k)). A triangle is split
+  /// at its edge midpoints (the middle child is the triangle of the three midpoints). Children
+  /// inherit emission, reflectance and radiosity; their areas sum to the parent's (to rounding);
+  /// each child is counter-clockwise as its parent. The leaf's face is cut in place; a point of an
+  /// edge the neighbour across has split already is its vertex, otherwise the new point joins the
+  /// neighbour's face as its T-vertex.
   NodeId split(NodeId id);
 
   /// The leaves of one patch's tree in depth-first order (children in index order).

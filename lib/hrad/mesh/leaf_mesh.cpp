@@ -113,23 +113,28 @@ bool LeafMesh::in_loop(FaceHandle f, VertexHandle v) const {
 
 HalfedgeHandle LeafMesh::first_halfedge(NodeId id) const { return halfedge_from(face(id), corner(id, 0)); }
 
-// The vertex at the midpoint of the face's edge from corner a to corner b: a vertex of the loop
+// The vertex at `at` (a point of the face's edge from corner a to corner b): a vertex of the loop
 // between them (the neighbour across split that edge already), or a new vertex inserted into the
 // edge, which puts it into the neighbour's loop as well.
-VertexHandle LeafMesh::midpoint(FaceHandle f, VertexHandle a, VertexHandle b) {
+VertexHandle LeafMesh::edge_point(FaceHandle f, VertexHandle a, VertexHandle b, const Vec3& at) {
   const Vec3 pa = position(a), pb = position(b);
-  const Vec3 mid = (pa + pb) * 0.5;  // as ElementHierarchy::split(): bit-identical from either side
   const Vec3 d = pb - pa;
   const double tol = std::min(tolerance_, 1e-3 * d.norm());
   HalfedgeHandle h = halfedge_from(f, a);
   for (HalfedgeHandle g = h; mesh_.to_vertex_handle(g) != b; g = mesh_.next_halfedge_handle(g))
-    if ((position(mesh_.to_vertex_handle(g)) - mid).norm() <= tol) return mesh_.to_vertex_handle(g);
-  // The piece of the edge holding the midpoint (T-vertices from input T-junctions may lie anywhere).
-  while (mesh_.to_vertex_handle(h) != b && (position(mesh_.to_vertex_handle(h)) - pa).dot(d) < 0.5 * d.squaredNorm())
+    if ((position(mesh_.to_vertex_handle(g)) - at).norm() <= tol) return mesh_.to_vertex_handle(g);
+  // The piece of the edge holding the point (T-vertices from input T-junctions may lie anywhere).
+  const double t = (at - pa).dot(d);
+  while (mesh_.to_vertex_handle(h) != b && (position(mesh_.to_vertex_handle(h)) - pa).dot(d) < t)
     h = mesh_.next_halfedge_handle(h);
-  const VertexHandle m = mesh_.add_vertex(point_of(mid));
+  const VertexHandle m = mesh_.add_vertex(point_of(at));
   mesh_.split(mesh_.edge_handle(h), m);
   return m;
+}
+
+// The midpoint as ElementHierarchy::split() computes it: bit-identical from either side.
+VertexHandle LeafMesh::midpoint(FaceHandle f, VertexHandle a, VertexHandle b) {
+  return edge_point(f, a, b, (position(a) + position(b)) * 0.5);
 }
 
 // Inserts the edge a -> b across face f (both in its loop, not adjacent); returns its halfedge.
@@ -137,7 +142,7 @@ HalfedgeHandle LeafMesh::cut(FaceHandle f, VertexHandle a, VertexHandle b) {
   return mesh_.insert_edge(halfedge_to(f, a), halfedge_from(f, b));
 }
 
-void LeafMesh::split(NodeId id, NodeId first) {
+void LeafMesh::split(NodeId id, NodeId first, SplitKind kind) {
   const FaceHandle f = face(id);
   const std::size_t parent = static_cast<std::size_t>(id);
   const std::size_t end = static_cast<std::size_t>(first) + 4;
@@ -151,6 +156,10 @@ void LeafMesh::split(NodeId id, NodeId first) {
   const int n = corners_[parent][3] < 0 ? 3 : 4;
   std::array<VertexHandle, 4> c, m;
   for (int k = 0; k < n; ++k) c[static_cast<std::size_t>(k)] = corner(id, k);
+  if (n == 4 && kind != SplitKind::kQuadrants) {
+    split_strips(id, first, kind, c);
+    return;
+  }
   for (int k = 0; k < n; ++k)
     m[static_cast<std::size_t>(k)] =
         midpoint(f, c[static_cast<std::size_t>(k)], c[static_cast<std::size_t>((k + 1) % n)]);
@@ -197,6 +206,39 @@ void LeafMesh::split(NodeId id, NodeId first) {
     set_node(first + 1, faces[1], {c[1], m[1], m[0], none});
     set_node(first + 2, faces[2], {c[2], m[2], m[1], none});
     set_node(first + 3, faces[3], {m[0], m[1], m[2], none});
+  }
+}
+
+// Four strips across the long direction (ElementHierarchy::split()): the quarter points L_k of one
+// long edge and R_k of the other (L_0, R_0 at the strips' start), cut L_k -> R_k for k = 1, 2, 3.
+void LeafMesh::split_strips(NodeId id, NodeId first, SplitKind kind, const std::array<VertexHandle, 4>& c) {
+  const FaceHandle f = face(id);
+  const bool u = kind == SplitKind::kStripsU;
+  // Strips across u run from edge 0 (c0 -> c1) and edge 2 (c3 -> c2, the loop runs c2 -> c3); across v
+  // from edge 3 (c0 -> c3, the loop runs c3 -> c0) and edge 1 (c1 -> c2).
+  const VertexHandle l0 = c[0], l4 = u ? c[1] : c[3], r0 = u ? c[3] : c[1], r4 = c[2];
+  std::array<VertexHandle, 5> l, r;
+  l[0] = l0, l[4] = l4, r[0] = r0, r[4] = r4;
+  const Vec3 pl0 = position(l0), pl4 = position(l4), pr0 = position(r0), pr4 = position(r4);
+  for (int k = 1; k < 4; ++k) {
+    const std::size_t i = static_cast<std::size_t>(k);
+    l[i] = u ? edge_point(f, l0, l4, quarter_point(pl0, pl4, k)) : edge_point(f, l4, l0, quarter_point(pl0, pl4, k));
+    r[i] = u ? edge_point(f, r4, r0, quarter_point(pr0, pr4, k)) : edge_point(f, r0, r4, quarter_point(pr0, pr4, k));
+  }
+  face_of_node_[static_cast<std::size_t>(id)] = -1;
+  FaceHandle rest = f;
+  std::array<FaceHandle, 4> faces;
+  for (std::size_t k = 1; k < 4; ++k) {
+    const HalfedgeHandle h = cut(rest, l[k], r[k]);
+    const FaceHandle a = mesh_.face_handle(h), b = mesh_.opposite_face_handle(h);
+    rest = in_loop(a, l4) ? a : b;
+    faces[k - 1] = rest == a ? b : a;
+  }
+  faces[3] = rest;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const std::array<VertexHandle, 4> corners = u ? std::array<VertexHandle, 4>{l[k], l[k + 1], r[k + 1], r[k]}
+                                                  : std::array<VertexHandle, 4>{l[k], r[k], r[k + 1], l[k + 1]};
+    set_node(first + static_cast<NodeId>(k), faces[k], corners);
   }
 }
 

@@ -411,10 +411,26 @@ const std::vector<NearEdge>& FormFactorEvaluator::floating_edges(int patch) cons
         const auto [cq, rq] = spheres[j];
         if (j == i || (cp - cq).norm() - rq > 3.0 * rp) continue;
         const Patch& q = scene_.patches[j];
-        bool floats = true, sees = false;
-        for (const Vec3& v : q.vertices) floats = floats && height(v) > contact;
+        bool floats = true, sees = false, front = true, above = false;
+        for (const Vec3& v : q.vertices) {
+          floats = floats && height(v) > contact;
+          front = front && height(v) > -contact;
+          above = above || height(v) > contact;
+        }
         for (const Vec3& v : p.vertices) sees = sees || (v - q.vertices[0]).dot(q.normal) > contact;
-        if (!floats || !sees) continue;
+        if (!sees) continue;
+        if (!floats) {
+          // An emitter standing on P's plane (a corridor's end wall beside its side walls): the
+          // edges its elements have in that plane, graded to kCreaseDepth.
+          if (!front || !above || !(scene_.material_of(q).emission.maxCoeff() > 0.0)) continue;
+          for (const auto& poly : sources_by_patch_[j])
+            for (std::size_t k = 0; k < poly.size(); ++k) {
+              const NearEdge e{poly[k], poly[(k + 1) % poly.size()], kCreaseDepth};
+              if (std::abs(height(e.a)) <= contact && std::abs(height(e.b)) <= contact && e.distance(cp) < 3.0 * rp)
+                floating_edges_[i].push_back(e);
+            }
+          continue;
+        }
         for (const auto& poly : sources_by_patch_[j])
           for (std::size_t k = 0; k < poly.size(); ++k) {
             const NearEdge e{poly[k], poly[(k + 1) % poly.size()]};

@@ -30,8 +30,9 @@ constexpr double kLeafCentroidRatio = 0.03;
 std::array<double, 9> shape_below(const ElementHierarchy& h, NodeId top, NodeId n, const std::array<double, 9>& field) {
   if (n == top) return field;
   const ElementNode& node = h.node(n);
-  return restrict_to_child(shape_below(h, top, node.parent, field), node.vertex_count,
-                           n - h.node(node.parent).first_child);
+  const ElementNode& parent = h.node(node.parent);
+  return restrict_to_child(shape_below(h, top, node.parent, field), node.vertex_count, parent.split,
+                           n - parent.first_child);
 }
 
 }  // namespace

@@ -29,19 +29,19 @@ double lagrange(int node, double t) {
 using Restriction = std::array<std::array<std::array<double, 9>, 9>, 4>;
 
 // Quads: biquadratic on the bilinear map, points in simpson_points() order at (u, v) = kQuadUv.
-// Child k of ElementHierarchy::split() has corners (parent corner k, midpoint of edge k, centre,
-// midpoint of edge k - 1); its own bilinear map is the parent's on that square of (u, v).
+// Child k of ElementHierarchy::split() spans the rectangle quad_child_uv(kind, k) of the parent's
+// (u, v), and its own bilinear map is the parent's there.
 constexpr const auto& kQuadUv = kSimpsonQuadUv;
 
-Restriction quad_restriction() {
+Restriction quad_restriction(SplitKind kind) {
   Restriction r{};
   for (int k = 0; k < 4; ++k) {
-    const int corner[4] = {k, 4 + k, 8, 4 + (k + 3) % 4};
+    const std::array<std::array<double, 2>, 4> corner = quad_child_uv(kind, k);
     for (int j = 0; j < 9; ++j) {
       const double a = kQuadUv[j][0], b = kQuadUv[j][1];
       const double w[4] = {(1 - a) * (1 - b), a * (1 - b), a * b, (1 - a) * b};
       double u = 0.0, v = 0.0;
-      for (int m = 0; m < 4; ++m) u += w[m] * kQuadUv[corner[m]][0], v += w[m] * kQuadUv[corner[m]][1];
+      for (int m = 0; m < 4; ++m) u += w[m] * corner[m][0], v += w[m] * corner[m][1];
       for (int i = 0; i < 9; ++i)
         r[k][j][i] =
             lagrange(static_cast<int>(2 * kQuadUv[i][0]), u) * lagrange(static_cast<int>(2 * kQuadUv[i][1]), v);
@@ -69,16 +69,20 @@ Restriction triangle_restriction() {
   return r;
 }
 
-const Restriction& restriction(int vertex_count) {
-  static const Restriction quad = quad_restriction();
+const Restriction& restriction(int vertex_count, SplitKind kind) {
+  static const Restriction quadrants = quad_restriction(SplitKind::kQuadrants);
+  static const Restriction strips_u = quad_restriction(SplitKind::kStripsU);
+  static const Restriction strips_v = quad_restriction(SplitKind::kStripsV);
   static const Restriction triangle = triangle_restriction();
-  return vertex_count == 4 ? quad : triangle;
+  if (vertex_count != 4) return triangle;
+  return kind == SplitKind::kStripsU ? strips_u : kind == SplitKind::kStripsV ? strips_v : quadrants;
 }
 
 }  // namespace
 
-std::array<double, 9> restrict_to_child(const std::array<double, 9>& parent, int vertex_count, int child) {
-  const Restriction& r = restriction(vertex_count);
+std::array<double, 9> restrict_to_child(const std::array<double, 9>& parent, int vertex_count, SplitKind kind,
+                                        int child) {
+  const Restriction& r = restriction(vertex_count, kind);
   const int inputs = vertex_count == 4 ? 9 : 6, outputs = vertex_count == 4 ? 9 : 7;
   std::array<double, 9> out{};
   for (int j = 0; j < outputs; ++j)
@@ -173,7 +177,7 @@ Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& 
     leaf_moments(field, id);
     return b;
   }
-  const Restriction& r = restriction(n.vertex_count);
+  const Restriction& r = restriction(n.vertex_count, n.split);
   const int inputs = n.vertex_count == 4 ? 9 : 6, outputs = n.vertex_count == 4 ? 9 : 7;
   Rgb sum = Rgb::Zero();
   double area = 0.0;
@@ -206,7 +210,7 @@ void PushPull::pull_moments(NodeField& field, NodeId id) const {
   // The parent's basis function i restricted to child k is sum_j R[k][j][i] times the child's
   // function j, so its moment is sum_k sum_j R[k][j][i] m_child_k[j].
   const ElementNode& n = h_.node(id);
-  const Restriction& r = restriction(n.vertex_count);
+  const Restriction& r = restriction(n.vertex_count, n.split);
   const int functions = n.vertex_count == 4 ? 9 : 6;
   PointValues& m = field.radiosity_moments[static_cast<std::size_t>(id)];
   m.fill(Rgb::Zero());

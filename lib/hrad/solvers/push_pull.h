@@ -28,10 +28,11 @@ struct LeafChange {
   double reflected = 0.0;
 };
 
-/// A PointValues field over an element of `vertex_count` vertices restricted to its child `child`
-/// (0..3, ElementHierarchy::split() order): the child's values are the parent's polynomial at the
-/// child's points, exactly (the two-scale relation the push uses).
-std::array<double, 9> restrict_to_child(const std::array<double, 9>& parent, int vertex_count, int child);
+/// A PointValues field over an element of `vertex_count` vertices, split as `kind`, restricted to
+/// its child `child` (0..3, ElementHierarchy::split() order): the child's values are the parent's
+/// polynomial at the child's points, exactly (the two-scale relation the push uses).
+std::array<double, 9> restrict_to_child(const std::array<double, 9>& parent, int vertex_count, SplitKind kind,
+                                        int child);
 
 class PushPull {
  public:

@@ -1,9 +1,10 @@
 // The leaves of an ElementHierarchy as the faces of one OpenMesh half-edge mesh (Botsch, Steinberg,
 // Bischoff & Kobbelt 2002, "OpenMesh: a generic and efficient polygon mesh data structure"), refined
-// in place: a 1-to-4 split of a leaf cuts its face into its four children's faces. A face's loop holds
+// in place: a 1-to-4 split of a leaf cuts its face into its four children's faces (quadrants, or
+// strips across a long quad). A face's loop holds
 // its leaf's corners and, between them, the corners of finer neighbours lying on its edges (its
-// T-vertices): an edge already split by the neighbour across it offers its midpoint to the second
-// split, and a split of an edge puts the midpoint into the neighbour's loop too. So edge neighbours,
+// T-vertices): an edge already split by the neighbour across it offers its points to the second
+// split, and a split of an edge puts its new points into the neighbour's loop too. So edge neighbours,
 // T-vertices and the vertices shared by leaves of neighbouring patches are the half-edge structure's.
 // Internal to the mesh module (it is not installed: OpenMesh stays private to hrad_mesh).
 #pragma once
@@ -23,6 +24,25 @@ struct LeafMeshTraits : public OpenMesh::DefaultTraits {
 };
 using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<LeafMeshTraits>;
 
+// The point at t = k/4 (k = 0..4) of the segment a -> b, by midpoints only: (a + b) * 0.5 is the
+// same bits as (b + a) * 0.5, so the neighbour across an edge, splitting it from the other end,
+// gets the same points.
+inline Vec3 quarter_point(const Vec3& a, const Vec3& b, int k) {
+  auto mid = [](const Vec3& x, const Vec3& y) -> Vec3 { return (x + y) * 0.5; };
+  switch (k) {
+    case 0:
+      return a;
+    case 1:
+      return mid(a, mid(a, b));
+    case 2:
+      return mid(a, b);
+    case 3:
+      return mid(mid(a, b), b);
+    default:
+      return b;
+  }
+}
+
 class LeafMesh {
  public:
   /// The roots (nodes 0 .. patches - 1) as faces. Their corners are welded by position once, here
@@ -32,9 +52,10 @@ class LeafMesh {
   /// patch whose face would make an edge non-manifold (overlapping input) gets its own vertices.
   LeafMesh(const std::vector<ElementNode>& roots, double weld_tolerance);
 
-  /// Cuts the face of leaf `id` into the faces of its children first .. first + 3 (ElementHierarchy::
-  /// split()'s corner order). A leaf without a face (a degenerate patch) has children without faces.
-  void split(NodeId id, NodeId first);
+  /// Cuts the face of leaf `id` into the faces of its children first .. first + 3, as `kind`
+  /// (ElementHierarchy::split()'s corner order). A leaf without a face (a degenerate patch) has
+  /// children without faces.
+  void split(NodeId id, NodeId first, SplitKind kind);
 
   /// True when an edge of leaf `id` holds two or more corners of finer leaves of its plane group
   /// across it: a neighbour at least two levels finer (the restricted quadtree's test).
@@ -65,7 +86,10 @@ class LeafMesh {
   PolyMesh::HalfedgeHandle halfedge_from(PolyMesh::FaceHandle f, PolyMesh::VertexHandle v) const;
   PolyMesh::HalfedgeHandle halfedge_to(PolyMesh::FaceHandle f, PolyMesh::VertexHandle v) const;
   bool in_loop(PolyMesh::FaceHandle f, PolyMesh::VertexHandle v) const;
+  PolyMesh::VertexHandle edge_point(PolyMesh::FaceHandle f, PolyMesh::VertexHandle a, PolyMesh::VertexHandle b,
+                                    const Vec3& at);
   PolyMesh::VertexHandle midpoint(PolyMesh::FaceHandle f, PolyMesh::VertexHandle a, PolyMesh::VertexHandle b);
+  void split_strips(NodeId id, NodeId first, SplitKind kind, const std::array<PolyMesh::VertexHandle, 4>& c);
   PolyMesh::HalfedgeHandle cut(PolyMesh::FaceHandle f, PolyMesh::VertexHandle a, PolyMesh::VertexHandle b);
   void set_node(NodeId id, PolyMesh::FaceHandle f, const std::array<PolyMesh::VertexHandle, 4>& corners);
 
