@@ -8,7 +8,7 @@ set -euo pipefail
 
 packages=(
   # toolchain
-  g++ make ninja-build cmake pkg-config ccache
+  g++ make ninja-build cmake pkg-config
   # geometry, meshes, linear algebra, fitting
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libopenmesh-dev libeigen3-dev libceres-dev libtbb-dev
   # command line, files, formats
@@ -17,6 +17,8 @@ packages=(
   libembree-dev
 )
 rest=(
+  # a compiler cache for rebuilds in other trees (an empty one only slows the first build)
+  ccache
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev
   # plots written by `hrad sweep` and `hrad figures`
