@@ -42,14 +42,14 @@ inline constexpr double kStripAspect = 16.0;
 
 /// One element: a convex planar triangle or quad lying on one patch.
 struct ElementNode {
-  std::array<Vec3, 4> vertices{};  ///< counter-clockwise seen from the patch's front; [3] unused for triangles
-  int vertex_count = 0;            ///< 3 or 4
+  std::array<Vec3, 4> vertices{};           ///< counter-clockwise seen from the patch's front; [3] unused for triangles
+  int vertex_count = 0;                     ///< 3 or 4
+  SplitKind split = SplitKind::kQuadrants;  ///< how the children cut it (kQuadrants for a leaf)
   double area = 0.0;
   int patch = -1;  ///< index into Scene::patches
   NodeId parent = kNoNode;
-  NodeId first_child = kNoNode;             ///< the 4 children are first_child .. first_child + 3; kNoNode for a leaf
-  int depth = 0;                            ///< 0 for a patch's root
-  SplitKind split = SplitKind::kQuadrants;  ///< how the children cut it (kQuadrants for a leaf)
+  NodeId first_child = kNoNode;  ///< the 4 children are first_child .. first_child + 3; kNoNode for a leaf
+  int depth = 0;                 ///< 0 for a patch's root
 
   Rgb radiosity = Rgb::Zero();    ///< B: the unknown, per channel
   Rgb emission = Rgb::Zero();     ///< E: the patch's emission (copied down at construction and split)

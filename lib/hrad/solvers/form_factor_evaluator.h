@@ -223,10 +223,12 @@ class FormFactorEvaluator {
   PairFormFactor unoccluded(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
                             int source_patch, bool with_reverse) const;
   // F(receiver -> source) by the contour rule on the receiver's points, graded towards the edges of
-  // the patches that float close in front of it (receiver_gauss_points()).
+  // the patches that float close in front of it and the edges emitters have in its plane
+  // (receiver_gauss_points(), kCreaseDepth).
   double contour_factor(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
                         int* points) const;
-  // The edges of the sources on patches floating in front of `patch`, found once.
+  // The edges of the sources on patches floating in front of `patch`, and of the emitters' sources
+  // lying in its plane, found once.
   const std::vector<NearEdge>& floating_edges(int patch) const;
   // Kernel-weighted visible fraction of a partially visible pair and its error estimate.
   std::pair<double, double> weighted_visibility(std::span<const Vec3> receiver, int receiver_patch,
