@@ -274,6 +274,17 @@ TEST(StoredLinks, LinksThatDoNotFitAreErrorsNamingTheFile) {
     l.first_child[leaf] = l.first_child[split];
     expect(restore(solution, l), "element node ");
   }
+  // A face whose loop misses its leaf's corner (elements cut another way): one corner of face 5
+  // moved a quarter of the way along its edge.
+  {
+    Solution s = solution;
+    const std::vector<int>& loop = s.faces[5];
+    const Vec3 along = s.vertices[static_cast<std::size_t>(loop[1])] - s.vertices[static_cast<std::size_t>(loop[0])];
+    s.vertices[static_cast<std::size_t>(loop[0])] += 0.25 * along;
+    const std::string e = restore(s, good);
+    expect(e, "element node ");
+    EXPECT_NE(e.find("is not a vertex of face"), std::string::npos) << e;
+  }
   // A face on another patch than its leaf.
   {
     Solution s = solution;

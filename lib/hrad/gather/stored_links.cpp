@@ -76,8 +76,23 @@ SolvedHierarchy restored_links(const Scene& scene, const Solution& solution, con
   if (leaves.size() != solution.faces.size())
     fail(fmt::format("element node: the hierarchy has {} leaves but the solution {} faces", leaves.size(),
                      solution.faces.size()));
+  // The face's loop holds its leaf's corners (to the weld, at most 1e-9 of the scene's diagonal): a
+  // file whose hierarchy cut a node another way (quadrants against strips, element_hierarchy.h
+  // SplitKind) can have leaves of the same patches and areas.
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  for (const Patch& p : scene.patches)
+    for (const Vec3& v : p.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  const double weld = patches > 0 ? 1e-8 * (hi - lo).norm() : 0.0;
   for (std::size_t f = 0; f < leaves.size(); ++f) {
     ElementNode& leaf = h.node(leaves[f]);
+    const double tol = std::max(1e-3 * std::sqrt(leaf.area), weld);
+    for (const Vec3& c : leaf.polygon())
+      if (std::none_of(solution.faces[f].begin(), solution.faces[f].end(),
+                       [&](int v) { return (solution.vertices[static_cast<std::size_t>(v)] - c).norm() <= tol; }))
+        fail(
+            fmt::format("element node {}: its corner ({:.9g}, {:.9g}, {:.9g}) is not a vertex of face {}: the file's "
+                        "elements were cut another way",
+                        leaves[f], c.x(), c.y(), c.z(), f));
     const double area = face_area(solution, f);
     if (leaf.patch != solution.face_patch[f] || !(std::abs(area - leaf.area) <= 1e-9 * leaf.area))
       fail(
