@@ -26,10 +26,6 @@ inline constexpr long kMaxReceiverCells = 1024;
 void receiver_gauss_points(std::span<const Vec3> receiver, const Vec3& unit_normal,
                            std::vector<detail::WeightedPoint>& out);
 
-/// An edge of a polygon that floats in front of the receiver, close to it (a lamp a millimetre
-/// from a wall): the point factor to that polygon rises from 0 to its full value across a band
-/// around the edge as wide as the edge's distance, which a cell of the rule larger than that
-/// distance cannot follow.
 /// Deepest level of graded cells below a cell of the plain rule (1/4096 of its size).
 inline constexpr int kMaxNearDepth = 12;
 
@@ -41,6 +37,10 @@ inline constexpr int kMaxNearDepth = 12;
 /// 7.9e-5, depth 4 2.9e-5 (tests/hard/long_room_test.cpp).
 inline constexpr int kCreaseDepth = 4;
 
+/// An edge of a polygon that floats in front of the receiver, close to it (a lamp a millimetre
+/// from a wall): the point factor to that polygon rises from 0 to its full value across a band
+/// around the edge as wide as the edge's distance, which a cell of the rule larger than that
+/// distance cannot follow. Or an edge an emitter has in the receiver's plane, graded to kCreaseDepth.
 struct NearEdge {
   Vec3 a, b;
   /// Cells through whose sphere this edge passes are cut to this depth at most.
@@ -51,7 +51,7 @@ struct NearEdge {
 
 /// receiver_gauss_points() graded towards `near`: a cell that a near edge passes through (its
 /// bounding sphere) is cut into four (a quad's cell in its parameter square, a triangle at its edge
-/// midpoints), to kMaxNearDepth levels; every cell keeps the plain rule. The cells along a lamp's
+/// midpoints), to the edge's max_depth levels; every cell keeps the plain rule. The cells along a lamp's
 /// edge end about twice as large as its distance: a lamp 1 mm or 0.3 mm from a wall then balances
 /// power within 1e-3 (lamp_near_wall_test; cells half that size change the balance by 1e-6 at four
 /// times the points, cells twice as large miss it by 10%). The points still do not depend on the
