@@ -77,9 +77,8 @@ std::array<std::array<double, 2>, 4> quad_child_uv(SplitKind kind, int child) {
 NodeId ElementHierarchy::split(NodeId id) {
   if (!node(id).is_leaf()) return node(id).first_child;
   const ElementNode parent = node(id);  // copy: push_back may reallocate
-  // Midpoints as (a + b) * 0.5: addition commutes exactly, so neighbours that split a shared
-  // edge from either side get bit-identical points.
-  auto mid = [](const Vec3& a, const Vec3& b) -> Vec3 { return (a + b) * 0.5; };
+  // Neighbours that split a shared edge from either side get bit-identical points (midpoint()).
+  const auto mid = detail::midpoint;
   const auto& v = parent.vertices;
   std::array<std::array<Vec3, 4>, 4> child{};
   int count = parent.vertex_count;

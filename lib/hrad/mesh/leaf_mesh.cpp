@@ -134,7 +134,7 @@ VertexHandle LeafMesh::edge_point(FaceHandle f, VertexHandle a, VertexHandle b, 
 
 // The midpoint as ElementHierarchy::split() computes it: bit-identical from either side.
 VertexHandle LeafMesh::midpoint(FaceHandle f, VertexHandle a, VertexHandle b) {
-  return edge_point(f, a, b, (position(a) + position(b)) * 0.5);
+  return edge_point(f, a, b, detail::midpoint(position(a), position(b)));
 }
 
 // Inserts the edge a -> b across face f (both in its loop, not adjacent); returns its halfedge.

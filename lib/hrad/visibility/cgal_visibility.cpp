@@ -376,6 +376,9 @@ class CgalVisibility final : public Visibility {
                        const std::span<const int>* occluders) const;
   bool blocked_between(const PatchEnd& a, int patch_a, const PatchEnd& b, int patch_b,
                        const std::span<const int>* occluders) const;
+  /// The same with the ends' segment already built.
+  bool blocked_between(const detail::OnPatchSegment& segment, const PatchEnd& a, int patch_a, const PatchEnd& b,
+                       int patch_b, const std::span<const int>* occluders) const;
   Sight sight_of(const Vec3& a, int patch_a, const Vec3& b, int patch_b, const std::span<const int>* occluders) const;
   /// A triangle of triangles_ with its coordinates and plane class.
   struct TriangleRef {
@@ -706,7 +709,11 @@ bool CgalVisibility::blocked_between(const Point& a, int patch_a, const Point& b
 
 bool CgalVisibility::blocked_between(const PatchEnd& ea, int patch_a, const PatchEnd& eb, int patch_b,
                                      const std::span<const int>* occluders) const {
-  const detail::OnPatchSegment segment(ea.end, eb.end);
+  return blocked_between(detail::OnPatchSegment(ea.end, eb.end), ea, patch_a, eb, patch_b, occluders);
+}
+
+bool CgalVisibility::blocked_between(const detail::OnPatchSegment& segment, const PatchEnd& ea, int patch_a,
+                                     const PatchEnd& eb, int patch_b, const std::span<const int>* occluders) const {
   if (segment.degenerate()) return false;
   // The ends' points lie within a few units in the last place of the doubles, far inside the
   // culling tests' padding (2^-40 of the coordinates' magnitude).
@@ -746,7 +753,7 @@ Sight CgalVisibility::sight_of(const Vec3& a, int patch_a, const Vec3& b, int pa
   if (!segment.facing(triangle_coords_[static_cast<std::size_t>(ea.triangle)],
                       triangle_coords_[static_cast<std::size_t>(eb.triangle)]))
     return Sight::kFacingAway;
-  return blocked_between(ea, patch_a, eb, patch_b, occluders) ? Sight::kBlocked : Sight::kVisible;
+  return blocked_between(segment, ea, patch_a, eb, patch_b, occluders) ? Sight::kBlocked : Sight::kVisible;
 }
 
 // The shaft's bounding planes in doubles, for culling boxes before any exact test (Haines &

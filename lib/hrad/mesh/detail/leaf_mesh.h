@@ -24,11 +24,15 @@ struct LeafMeshTraits : public OpenMesh::DefaultTraits {
 };
 using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<LeafMeshTraits>;
 
-// The point at t = k/4 (k = 0..4) of the segment a -> b, by midpoints only: (a + b) * 0.5 is the
-// same bits as (b + a) * 0.5, so the neighbour across an edge, splitting it from the other end,
-// gets the same points.
+// The midpoint of a and b as every split computes it: (a + b) * 0.5 is the same bits as
+// (b + a) * 0.5, so the neighbour across an edge, splitting it from the other end, gets the same
+// point.
+inline Vec3 midpoint(const Vec3& a, const Vec3& b) { return (a + b) * 0.5; }
+
+// The point at t = k/4 (k = 0..4) of the segment a -> b, by midpoints only (the same bits from
+// either end, as midpoint()).
 inline Vec3 quarter_point(const Vec3& a, const Vec3& b, int k) {
-  auto mid = [](const Vec3& x, const Vec3& y) -> Vec3 { return (x + y) * 0.5; };
+  const auto mid = midpoint;
   switch (k) {
     case 0:
       return a;
