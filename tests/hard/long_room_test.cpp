@@ -66,7 +66,7 @@ TEST(LongRooms, ClosedCorridorsAbsorbWhatTheirEndWallEmits) {
 // 1.25 x 0.75 x 1000 corridor at 0.75 x 15.6 m, a leaf's nine points see the end wall's light fall
 // steeply along it, and the linear basis balances only because a link sends by its factor's shape
 // as moved to the exact mean, not as pulled to stay >= 0 (refinement_oracle.cpp shape_of(): pulled,
-// 1.9% of the power was lost).
+// it loses 1.9% of the power).
 TEST(LongRooms, HierarchicalCorridorsBalanceAndKeepTheirElementsWellShaped) {
   struct Case {
     double w, h, l, rho;

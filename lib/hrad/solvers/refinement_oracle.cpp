@@ -213,7 +213,8 @@ double shadow_variation(const Side& side, double fraction) {
 // points' quadratures both sum to the exchange), so the side sends all of its power, which a pull
 // on some links would not keep. A long leaf whose points see a steep falloff (a corridor's wall
 // beside the lit end, refined no further by --aeps) has quadrature means far above the exact ones:
-// pulled on both ends, a 1.25 x 0.75 x 1000 corridor's linear solve lost 1.9% of its power.
+// pulled on both ends, a 1.25 x 0.75 x 1000 corridor's linear solve loses 1.9% of its power
+// (tests/hard/long_room_test.cpp).
 void shape_of(const Side& side, double mean, bool nonnegative, std::array<float, 9>* shape) {
   std::array<double, 9> g{};
   for (int i = 0; i < side.points.count; ++i) g[i] = side.factor[i] * side.visible[i];
