@@ -202,9 +202,9 @@ double shadow_variation(const Side& side, double fraction) {
 }
 
 // The factor's shape over one side: the visible point factors, moved to the link's mean `mean` by
-// adding the difference of means (their quadrature is exact for the field), and with `nonnegative`
-// pulled towards `mean` as far as needed to keep every point >= 0. A triangle's centroid value is
-// the quadratic's through the other six (link_operator.h PointValues).
+// adding the difference of means (their quadrature is exact for the field): `sends`; and that shape
+// pulled towards `mean` as far as needed to keep every point >= 0: `receives`. A triangle's centroid
+// value is the quadratic's through the other six (link_operator.h PointValues).
 //
 // The side receives by the nonnegative shape: an irradiance < 0 at a point would make a linear
 // leaf's corner < 0, and the pull keeps the mean, so the side gathers the link's exchange either
@@ -215,7 +215,7 @@ double shadow_variation(const Side& side, double fraction) {
 // beside the lit end, refined no further by --aeps) has quadrature means far above the exact ones:
 // pulled on both ends, a 1.25 x 0.75 x 1000 corridor's linear solve loses 1.9% of its power
 // (tests/hard/long_room_test.cpp).
-void shape_of(const Side& side, double mean, bool nonnegative, std::array<float, 9>* shape) {
+void shape_of(const Side& side, double mean, std::array<float, 9>* receives, std::array<float, 9>* sends) {
   std::array<double, 9> g{};
   for (int i = 0; i < side.points.count; ++i) g[i] = side.factor[i] * side.visible[i];
   if (side.points.count == 7) {
@@ -231,9 +231,13 @@ void shape_of(const Side& side, double mean, bool nonnegative, std::array<float,
   g_mean = area > 0.0 ? g_mean / area : 0.0;
   double lambda = 1.0;
   for (int i = 0; i < side.points.count; ++i)
-    if (nonnegative && mean + (g[i] - g_mean) < 0.0) lambda = std::min(lambda, mean / (g_mean - g[i]));
-  shape->fill(0.0f);
-  for (int i = 0; i < side.points.count; ++i) (*shape)[i] = static_cast<float>(mean + lambda * (g[i] - g_mean));
+    if (mean + (g[i] - g_mean) < 0.0) lambda = std::min(lambda, mean / (g_mean - g[i]));
+  receives->fill(0.0f);
+  sends->fill(0.0f);
+  for (int i = 0; i < side.points.count; ++i) {
+    (*receives)[i] = static_cast<float>(mean + lambda * (g[i] - g_mean));
+    (*sends)[i] = static_cast<float>(mean + (g[i] - g_mean));
+  }
 }
 
 // What a side sends through the link is the integral of its radiosity against its shape (the
@@ -566,13 +570,11 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
     return;
   }
   c.shaped = true;
-  shape_of(sp, c.f_pq, true, &c.shape_p);
-  shape_of(sq, c.f_qp, true, &c.shape_q);
-  std::array<float, 9> sends{};
-  shape_of(sp, c.f_pq, false, &sends);
-  source_weights_of(sp, sends, linked * fraction, &c.source_p);
-  shape_of(sq, c.f_qp, false, &sends);
-  source_weights_of(sq, sends, linked * fraction, &c.source_q);
+  std::array<float, 9> sends_p{}, sends_q{};
+  shape_of(sp, c.f_pq, &c.shape_p, &sends_p);
+  shape_of(sq, c.f_qp, &c.shape_q, &sends_q);
+  source_weights_of(sp, sends_p, linked * fraction, &c.source_p);
+  source_weights_of(sq, sends_q, linked * fraction, &c.source_q);
 }
 
 void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
