@@ -79,9 +79,7 @@ SolvedHierarchy restored_links(const Scene& scene, const Solution& solution, con
   // The face's loop holds its leaf's corners (to the weld, at most 1e-9 of the scene's diagonal): a
   // file whose hierarchy cut a node another way (quadrants against strips, element_hierarchy.h
   // SplitKind) can have leaves of the same patches and areas.
-  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-  for (const Patch& p : scene.patches)
-    for (const Vec3& v : p.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  const auto [lo, hi] = scene.bounds();
   const double weld = patches > 0 ? 1e-8 * (hi - lo).norm() : 0.0;
   for (std::size_t f = 0; f < leaves.size(); ++f) {
     ElementNode& leaf = h.node(leaves[f]);
