@@ -213,8 +213,12 @@ SETTINGS = [
     ('rpk_office2', 'hrad', 'aeps total/100', 1 / 100),
     ('rpk_office2', 'hrad', 'defaults', None),
     ('rpk_office2', 'hrad', 'linear, aeps total/100', (1 / 100, ['--basis', 'linear'])),
+    ('rpk_office2', 'hrad', 'linear, total/100, feps 0.04, 4 samples',
+     (1 / 100, ['--basis', 'linear'] + ['--feps', '0.04', '--visibility-samples', '4'])),
     ('rpk_office2', 'hrad', 'linear, total/100, feps 0.04, 16 samples',
      (1 / 100, ['--basis', 'linear'] + ['--feps', '0.04', '--visibility-samples', '16'])),
+    ('rpk_office2', 'hrad', 'linear, feps 0.02, 16 samples',
+     (None, ['--basis', 'linear'] + ['--feps', '0.02', '--visibility-samples', '16'])),
     ('rpk_office2', 'hrad', 'linear basis', (None, ['--basis', 'linear'])),
 ]
 SPLASH_SCENE = {'splash_test': ['-batch'], 'splash_room': ['-batch', '-room']}
