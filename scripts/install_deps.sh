@@ -64,7 +64,7 @@ Version: 1.0
 Architecture: all
 Maintainer: hrad scripts/install_deps.sh <root@localhost>
 Provides: libopenscenegraph-dev
-Description: stands in for libopenscenegraph-dev where libopenmesh-dev is built against
+Description: stands in for libopenscenegraph-dev, which libopenmesh-dev depends on
  hrad includes none of OpenMesh's OpenSceneGraph headers. Empty; installed by hrad's
  scripts/install_deps.sh (without --with-openscenegraph).
 CONTROL
