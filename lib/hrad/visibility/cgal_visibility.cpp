@@ -50,7 +50,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mpzf.h>
 #include <CGAL/Simple_cartesian.h>
-#include <CGAL/convex_hull_3.h>
+#include <CGAL/convex_hull_3.h>  // extreme_points_3
 
 #include <algorithm>
 #include <cmath>
@@ -68,6 +68,7 @@
 #include "hrad/visibility/segment_bvh.h"
 #include "hrad/visibility/segment_triangle.h"
 #include "hrad/visibility/shaft_exact.h"
+#include "hrad/visibility/shaft_hull.h"
 #include "hrad/visibility/visibility.h"
 
 namespace hrad {
@@ -108,6 +109,10 @@ struct PatchPoint {
   int axis = 0;
   detail::IntervalKernel::Point_3 box;
   mutable std::optional<detail::HomogeneousKernel::Point_3> exact_;
+  /// The same point for certain (the converse may fail): shaft facets skip their predicate on it.
+  friend bool operator==(const PatchPoint& x, const PatchPoint& y) {
+    return x.p == y.p && x.plane == y.plane && (x.plane == nullptr || x.axis == y.axis);
+  }
   const detail::HomogeneousKernel::Point_3& exact() const {
     if (!exact_) exact_ = detail::plane_point<detail::HomogeneousKernel>(plane, axis, Vec3(p.x(), p.y(), p.z()));
     return *exact_;
@@ -190,53 +195,8 @@ bool any_strictly_in_front(std::span<const typename EK::P> poly, std::span<const
   return false;
 }
 
-/// A supporting plane of the shaft through three of its points, oriented with the shaft on the
-/// non-negative side.
-template <class EK>
-struct Facet {
-  typename EK::P p, q, r;
-  CGAL::Orientation side(const typename EK::P& x) const {
-    // Shared vertices are common (neighbouring patches) and cost the predicate its exact fallback.
-    if constexpr (std::is_same_v<EK, DoubleOps>)
-      if (x == p || x == q || x == r) return CGAL::COPLANAR;
-    return EK::orient(p, q, r, x);
-  }
-};
-
-/// The side facet planes of conv(A u B): those through points of both polygons (the planes of A
-/// and B themselves are added by the caller as front half-spaces). A facet found from several
-/// triples is kept once. Empty when all points are coplanar. O(n^4) in the few corners.
-template <class EK>
-std::vector<Facet<EK>> hull_facets(std::span<const typename EK::P> pts, std::size_t a_count) {
-  std::vector<Facet<EK>> facets;
-  const std::size_t n = pts.size();
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j)
-      for (std::size_t k = j + 1; k < n; ++k) {
-        if (k < a_count || i >= a_count) continue;  // all from A or all from B: its own plane
-        if (EK::collinear(pts[i], pts[j], pts[k])) continue;
-        bool pos = false, neg = false;
-        for (std::size_t m = 0; m < n && !(pos && neg); ++m) {
-          if (m == i || m == j || m == k) continue;
-          const CGAL::Orientation o = EK::orient(pts[i], pts[j], pts[k], pts[m]);
-          pos |= o == CGAL::POSITIVE;
-          neg |= o == CGAL::NEGATIVE;
-        }
-        if (pos && neg) continue;
-        if (!pos && !neg) return {};  // all coplanar: no 3D shaft
-        // A facet holding more than three points is found once per triple: keep its first.
-        const bool known = std::any_of(facets.begin(), facets.end(), [&](const Facet<EK>& f) {
-          return f.side(pts[i]) == CGAL::COPLANAR && f.side(pts[j]) == CGAL::COPLANAR &&
-                 f.side(pts[k]) == CGAL::COPLANAR;
-        });
-        if (known) continue;
-        if (neg)
-          facets.push_back({pts[i], pts[k], pts[j]});
-        else
-          facets.push_back({pts[i], pts[j], pts[k]});
-      }
-  return facets;
-}
+template <class Ops>
+using Facet = detail::ShaftFacet<Ops>;
 
 /// Drops the vertices of `all` collinear with their neighbours (T-vertices of elements): the
 /// hull is the same.
@@ -1021,7 +981,7 @@ PairClass CgalVisibility::classify_points(std::span<const typename Ops::P> a, in
   if (!any_strictly_in_front<Ops>(b, a)) return PairClass::kFacingAway;
   std::vector<P> pts(a.begin(), a.end());
   pts.insert(pts.end(), b.begin(), b.end());
-  std::vector<Facet<Ops>> facets = hull_facets<Ops>(pts, a.size());
+  std::vector<Facet<Ops>> facets = detail::shaft_side_facets<Ops>(pts, a.size());
   if (facets.empty()) return PairClass::kFacingAway;  // coplanar: no segment leaves the plane
   // Only mutually facing pairs matter (estimate() counts no other), and they join A' to B' (see
   // the top of this file): the closed front half-spaces of both planes bound their shaft too.
