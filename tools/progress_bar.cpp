@@ -16,4 +16,10 @@ void show_progress(int done, int total, std::string_view what) {
   std::fflush(stderr);
 }
 
+void show_line(std::string_view line) {
+  std::fprintf(stderr, "%s%.*s\n", isatty(fileno(stderr)) ? "\r\033[K" : "", static_cast<int>(line.size()),
+               line.data());
+  std::fflush(stderr);
+}
+
 }  // namespace hrad::cli

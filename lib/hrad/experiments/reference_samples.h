@@ -1,7 +1,7 @@
 // A sweep's reference as its final gather at the error samples, saved beside the sweep
 // (reference_samples.json) and read back by a later sweep of the same scene (hrad sweep
-// --reference-from DIR): the reference's solve and gather are most of a sweep's fixed cost (LU
-// 258 s and gather 230 s on the Cornell box), and a sweep with other settings can reuse them.
+// --reference-from DIR): the reference's solve and gather are most of a sweep's fixed cost (their
+// seconds are in reference.json), and a sweep with other settings can reuse them.
 //
 // reference_samples.json: {"samples_per_patch": m, "layout": "jittered", "columns": ["patch", "x",
 // "y", "z", "area", "r", "g", "b"], "samples": [[patch, x, y, z, area, r, g, b], ...]}, one row per

@@ -22,6 +22,7 @@ SolveOptions base_options(Method method, const SweepOptions& sweep) {
   SolveOptions o;
   o.method = method;
   o.threads = sweep.threads;
+  o.progress = sweep.solve_progress;
   if (sweep.visibility_samples > 0) o.visibility_samples = sweep.visibility_samples;
   return o;
 }

@@ -112,6 +112,9 @@ struct SweepOptions {
   int threads = 0;
   /// Progress: (runs done, runs in all, what runs now).
   std::function<void(int, int, std::string_view)> progress;
+  /// Progress inside each solve, the reference's included (SolveOptions::progress): long phases
+  /// (a fine full matrix's form factors, an LU) print lines with an estimate of the time left.
+  std::function<void(std::string_view)> solve_progress;
 };
 
 /// The solution with each element's emission subtracted (B - E): the part a solver computes. Errors
