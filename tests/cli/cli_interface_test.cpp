@@ -124,13 +124,16 @@ TEST(CliSolve, SameBytesRunAfterRunAndWhateverTheThreadCount) {
 }
 
 TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
-  // The quick sweep end to end on the simple room (a table shadows the floor): every file of the
+  // A small sweep end to end on the simple room (a table shadows the floor): every file of the
   // interface, one CSV row per setting, and error that falls as each method's mesh gets finer.
   TempDir dir;
   const std::string out = dir.path("sweep");
   // The sweep's default 256 error samples per patch (--samples), not fewer: 16 alias with this
   // room's element grid, and the full matrix's measured error can then rise with refinement.
-  const RunResult r = run_hrad("sweep notebooks_data/scenes/simple_room.obj --quick --out " + out, dir);
+  const RunResult r = run_hrad(
+      "sweep notebooks_data/scenes/simple_room.obj --elements 32,64,128 --patches 12,24,48 --feps 0.3,0.1,0.03 "
+      "--aeps 0.01,0.003,0.001 --out " + out,
+      dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("reference"), std::string::npos) << r.err;  // progress on stderr
 
@@ -158,8 +161,8 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
     EXPECT_GT(rows.back().error_l2, 0.0) << line;
     EXPECT_LT(rows.back().error_l2, 1.0) << line;
   }
-  // --quick: 3 element counts for full and substructuring, 3 patch counts, 3 feps and 3 aeps, each
-  // once per basis (constant, linear).
+  // 3 element counts for full and substructuring, 3 patch counts, 3 feps and 3 aeps, each once per
+  // basis (constant, linear).
   ASSERT_EQ(rows.size(), 30u);
   auto runs = [&](const std::string& method, const std::string& parameter) {
     std::vector<Row> v;
@@ -193,7 +196,7 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
 
   const auto ref = nlohmann::json::parse(slurp(out + "/reference.json"));
   EXPECT_TRUE(ref.at("final_gather").get<bool>());
-  EXPECT_EQ(ref.at("elements_aimed_at").get<double>(), 4 * 128.0);  // 4 x the finest quick full run
+  EXPECT_EQ(ref.at("elements_aimed_at").get<double>(), 4 * 128.0);  // 4 x the finest full run
   EXPECT_GT(ref.at("elements").get<double>(), full.back().elements);
   EXPECT_EQ(ref.at("scene"), "notebooks_data/scenes/simple_room.obj");
 
@@ -208,13 +211,13 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   EXPECT_TRUE(fit.contains("speedup"));
 
   EXPECT_EQ(slurp(out + "/pareto.png").substr(0, 8), "\x89PNG\r\n\x1a\n");
-  EXPECT_NE(slurp(out + "/command.txt").find("--quick"), std::string::npos);
+  EXPECT_NE(slurp(out + "/command.txt").find("--aeps 0.01,0.003,0.001"), std::string::npos);
 
   // --reference-from: a second sweep with one setting per parameter reads the reference back
   // instead of solving it, and judges the same runs to the same digits.
   const std::string again = dir.path("again");
   const RunResult r2 = run_hrad(
-      "sweep notebooks_data/scenes/simple_room.obj --quick --elements 128 --patches 20 "
+      "sweep notebooks_data/scenes/simple_room.obj --elements 128 --patches 20 "
       "--feps 0.3 --aeps 0.001 --basis constant --reference-from " +
           out + " --out " + again,
       dir);
@@ -247,7 +250,7 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   EXPECT_EQ(nlohmann::json::parse(slurp(again + "/reference.json")).at("reused_from"), out);
   // command.txt reruns the sweep: every option given is in it.
   const std::string command = slurp(again + "/command.txt");
-  for (const char* given : {"--quick", "--elements 128", "--patches 20", "--feps 0.3", "--aeps 0.001",
+  for (const char* given : {"--elements 128", "--patches 20", "--feps 0.3", "--aeps 0.001",
                             "--basis constant", "--reference-from"})
     EXPECT_NE(command.find(given), std::string::npos) << given << " missing from " << command;
   // Another scene's samples are refused before anything runs, naming the file.
