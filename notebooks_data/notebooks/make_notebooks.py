@@ -19,7 +19,10 @@ import pandas as pd
 %matplotlib inline
 
 EXPERIMENTS = Path(os.environ.get("HRAD_EXPERIMENTS", "../experiments"))
-COLORS = {"full": "#d62728", "substructure": "#1f77b4", "hierarchical": "#2ca02c"}"""
+# One colour per method and basis (rows labelled as `hrad sweep` labels them); others take matplotlib's cycle.
+COLORS = {"full": "#d62728", "substructure": "#1f77b4", "hierarchical": "#2ca02c", "full_linear": "#ff7f0e",
+          "substructure_linear": "#17becf", "hierarchical_linear": "#9467bd", "hierarchical_leaf": "#8c564b",
+          "hierarchical_leaf_linear": "#e377c2"}"""
 
 
 def notebook(cells):
@@ -51,7 +54,7 @@ sweep = notebook([
                   '    for (method, parameter), g in sweep.groupby(["method", "parameter"]):\n'
                   '        g = g.sort_values("seconds")\n'
                   '        ax.plot(g.seconds, g[column], "o-" if parameter in ("max_area", "feps") else "^:",\n'
-                  '                color=COLORS[method], label=f"{method} ({parameter})")\n'
+                  '                color=COLORS.get(method), label=f"{method} ({parameter})")\n'
                   '    ax.set(xscale="log", yscale="log", xlabel="seconds", ylabel="relative L2 error", title=column)\n'
                   '    ax.axhline(0.01, color="gray", lw=0.8, ls="--")\n'
                   '    ax.grid(True, which="both", alpha=0.3)\n'
@@ -63,9 +66,9 @@ sweep = notebook([
                   '    g = g.sort_values("elements")\n'
                   '    fit = fits["methods"][method]\n'
                   '    lf, tf = fit.get("links_vs_elements"), fit.get("time_vs_elements")\n'
-                  '    a.plot(g.elements, g.links, "o-", color=COLORS[method],\n'
+                  '    a.plot(g.elements, g.links, "o-", color=COLORS.get(method),\n'
                   '           label=method + (f" slope {lf[\'b\']:.2f}" if lf else ""))\n'
-                  '    b.plot(g.elements, g.seconds, "o-", color=COLORS[method],\n'
+                  '    b.plot(g.elements, g.seconds, "o-", color=COLORS.get(method),\n'
                   '           label=method + (f" slope {tf[\'b\']:.2f}" if tf else ""))\n'
                   'for ax, label in ((a, "links (form factors)"), (b, "seconds")):\n'
                   '    ax.set(xscale="log", yscale="log", xlabel="elements", ylabel=label)\n'
@@ -96,7 +99,7 @@ figures = notebook([
                   '    for method, g in cost.groupby("method"):\n'
                   '        g = g.sort_values("elements")\n'
                   '        g = g[g[measure] > 0]\n'
-                  '        ax.plot(g.elements, g[measure], "o-", color=COLORS[method], label=method)\n'
+                  '        ax.plot(g.elements, g[measure], "o-", color=COLORS.get(method), label=method)\n'
                   '    ax.set(xscale="log", yscale="log", xlabel="elements n", title=measure)\n'
                   '    ax.grid(True, which="both", alpha=0.3)\n'
                   '    ax.legend(fontsize=8)\n'
@@ -121,7 +124,7 @@ figures = notebook([
     new_code_cell('far = pd.read_csv(DIR / "fig3_far.csv")\n'
                   'fig, ax = plt.subplots(figsize=(7, 5))\n'
                   'for method, g in far.groupby("method"):\n'
-                  '    ax.plot(g.k, g.cross_pairs, "o-", color=COLORS[method], label=method)\n'
+                  '    ax.plot(g.k, g.cross_pairs, "o-", color=COLORS.get(method), label=method)\n'
                   'k = far.k.drop_duplicates().sort_values().to_numpy(dtype=float)\n'
                   'ax.plot(k, k**2, "--", color="gray", lw=0.8, label="k^2")\n'
                   'ax.plot(k, 2 * k, ":", color="gray", lw=0.8, label="2k")\n'
@@ -151,7 +154,7 @@ figures = notebook([
     new_code_cell('conv = pd.read_csv(DIR / "fig5_convergence.csv")\n'
                   'fig, ax = plt.subplots(figsize=(7, 5))\n'
                   'for method, g in conv.groupby("method"):\n'
-                  '    ax.plot(g.iteration, g.change, "o-", ms=3, color=COLORS[method], label=method)\n'
+                  '    ax.plot(g.iteration, g.change, "o-", ms=3, color=COLORS.get(method), label=method)\n'
                   'ax.set(yscale="log", xlabel="iteration", ylabel="largest relative change")\n'
                   'ax.grid(True, which="both", alpha=0.3)\n'
                   'ax.legend()\n'
