@@ -23,10 +23,11 @@
 //                       and the full/hierarchical ratio
 //   DIR/pareto.png      error against time, log-log, the three methods
 //   DIR/command.txt     the command that made them
-// --quick runs a short sweep that still brackets 1% on the Cornell box (see its settings below). --no-gather skips the runs' gathers
-// (gathered columns nan); --gather-tolerance T sets their Barnes-Hut tolerance (default 1e-2,
-// lib/hrad/gather/leaf_gather.h); hierarchical runs gather through their own links
-// (lib/hrad/gather/link_gather.h) unless --gather-sources all. Progress goes to stderr.
+// --quick runs a short sweep that still brackets 1% on the Cornell box (its settings below).
+// --no-gather skips the runs' gathers (gathered columns nan); --gather-tolerance T sets their
+// Barnes-Hut tolerance (default 1e-2, lib/hrad/gather/leaf_gather.h); hierarchical runs gather
+// through their own links (lib/hrad/gather/link_gather.h) unless --gather-sources all. Progress,
+// each solve's included, goes to stderr.
 #include <algorithm>
 #include <cmath>
 #include <fstream>

@@ -113,7 +113,7 @@ struct SweepOptions {
   /// Progress: (runs done, runs in all, what runs now).
   std::function<void(int, int, std::string_view)> progress;
   /// Progress inside each solve, the reference's included (SolveOptions::progress): long phases
-  /// (a fine full matrix's form factors, an LU) print lines with an estimate of the time left.
+  /// (a fine full matrix's form factors) print lines with an estimate of the time left.
   std::function<void(std::string_view)> solve_progress;
 };
 
