@@ -12,6 +12,7 @@
 
 #include "hrad/analysis/error_metrics.h"
 #include "hrad/core/error.h"
+#include "hrad/core/progress.h"
 #include "hrad/core/stopwatch.h"
 #include "hrad/experiments/final_gather.h"
 
@@ -249,6 +250,10 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
       g.links = &kept;
       GatherWork work;
       const Stopwatch watch;
+      if (options.solve_progress)  // a fine run's gather takes minutes too
+        g.progress = [&](std::size_t done, std::size_t all) {
+          if (done < all) options.solve_progress(progress_line("final gather", done, all, "points", watch.seconds()));
+        };
       const std::vector<Rgb> gathered = final_gather_reflected(scene, solution, samples, g, &work);
       row.gather_seconds = watch.seconds();
       row.gather_work = work.total();
