@@ -19,6 +19,16 @@
 namespace hrad {
 namespace {
 
+// A final gather's progress, (points done, points in all) every 2 s, as solve_progress lines with
+// the time left; empty without solve_progress.
+std::function<void(std::size_t, std::size_t)> gather_progress(const SweepOptions& sweep, std::string what,
+                                                              const Stopwatch& watch) {
+  if (!sweep.solve_progress) return {};
+  return [&sweep, what = std::move(what), &watch](std::size_t done, std::size_t all) {
+    if (done < all) sweep.solve_progress(progress_line(what, done, all, "points", watch.seconds()));
+  };
+}
+
 SolveOptions base_options(Method method, const SweepOptions& sweep) {
   SolveOptions o;
   o.method = method;
@@ -124,11 +134,8 @@ Reference make_reference(const Scene& scene, const SweepOptions& options) {
     FinalGatherOptions g;
     g.threads = options.threads;
     g.visibility_samples = o.visibility_samples;
-    if (options.progress)
-      g.progress = [&](std::size_t done, std::size_t all) {
-        options.progress(static_cast<int>(done), static_cast<int>(all), "reference: final gather at the samples");
-      };
-    Stopwatch watch;
+    const Stopwatch watch;
+    g.progress = gather_progress(options, "reference: final gather", watch);
     ref.gathered = final_gather_reflected(scene, ref.solution, samples, g);
     ref.gather_seconds = watch.seconds();
   }
@@ -250,10 +257,7 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const Reference& reference, 
       g.links = &kept;
       GatherWork work;
       const Stopwatch watch;
-      if (options.solve_progress)  // a fine run's gather takes minutes too
-        g.progress = [&](std::size_t done, std::size_t all) {
-          if (done < all) options.solve_progress(progress_line("final gather", done, all, "points", watch.seconds()));
-        };
+      g.progress = gather_progress(options, "final gather", watch);  // a fine run's takes minutes too
       const std::vector<Rgb> gathered = final_gather_reflected(scene, solution, samples, g, &work);
       row.gather_seconds = watch.seconds();
       row.gather_work = work.total();
