@@ -114,7 +114,8 @@ TEST(Visibility, ConstQueriesAreThreadSafeAndCountersAddUp) {
   EXPECT_EQ(v->counters().pair_queries.load(), 3u * n * n);
   EXPECT_GT(rays_serial, 0u);
   const auto& c = v->counters();
-  EXPECT_EQ(c.pairs_facing_away + c.pairs_visible + c.pairs_hidden + c.pairs_partial, c.pair_queries.load());
+  EXPECT_EQ(c.pairs_facing_away.load() + c.pairs_visible.load() + c.pairs_hidden.load() + c.pairs_partial.load(),
+            c.pair_queries.load());
 }
 
 }  // namespace

@@ -207,34 +207,34 @@ KernelVisibility FormFactorEvaluator::visibility_from_point(const Vec3& x, const
 
 bool FormFactorEvaluator::faces_away(std::span<const Vec3> a, std::span<const Vec3> b) const {
   if (!effects_.cull_facing_away || !(behind(a, b) || behind(b, a))) return false;
-  culled_.fetch_add(1, std::memory_order_relaxed);
+  culled_.add();
   return true;
 }
 
 double FormFactorEvaluator::point_factor(const Vec3& x, const Vec3& n, std::span<const Vec3> source) const {
-  point_factors_.fetch_add(1, std::memory_order_relaxed);
+  point_factors_.add();
   return point_to_polygon(x, n, source, kLambertSumOnly);
 }
 
 double FormFactorEvaluator::point_factor(const Vec3& x, const Vec3& n, const Vec3& inward,
                                          std::span<const Vec3> source) const {
-  point_factors_.fetch_add(1, std::memory_order_relaxed);
+  point_factors_.add();
   return point_to_polygon_limit(x, n, inward, source, kLambertSumOnly);
 }
 
 PairFormFactor FormFactorEvaluator::gauss(std::span<const Vec3> receiver, std::span<const Vec3> source) const {
-  evaluations_.fetch_add(1, std::memory_order_relaxed);
+  evaluations_.add();
   int points_r = 0, points_s = 0;
   const double f_rs = receiver_gauss_factor(receiver, source, kLambertSumOnly, &points_r);
   const double f_sr = receiver_gauss_factor(source, receiver, kLambertSumOnly, &points_s);
-  point_factors_.fetch_add(static_cast<std::uint64_t>(points_r + points_s), std::memory_order_relaxed);
+  point_factors_.add(static_cast<std::uint64_t>(points_r + points_s));
   const double exchange = 0.5 * (polygon_area(receiver) * f_rs + polygon_area(source) * f_sr);
   return {exchange / polygon_area(receiver), exchange / polygon_area(source)};
 }
 
 PairFormFactor FormFactorEvaluator::analytic(std::span<const Vec3> receiver, std::span<const Vec3> source,
                                              double rel_tol, double abs_tol) const {
-  evaluations_.fetch_add(1, std::memory_order_relaxed);
+  evaluations_.add();
   return polygon_to_polygon(receiver, source, rel_tol, abs_tol);
 }
 
@@ -245,21 +245,21 @@ double FormFactorEvaluator::receiver_factor(std::span<const Vec3> receiver, std:
   if (!separated(receiver, source, 1.0)) return analytic(receiver, source).from_to;
   int points = 0;
   const double f = receiver_factor_by_distance(receiver, source, centroid_ratio, &points);
-  point_factors_.fetch_add(static_cast<std::uint64_t>(points), std::memory_order_relaxed);
+  point_factors_.add(static_cast<std::uint64_t>(points));
   return f;
 }
 
 PairClass FormFactorEvaluator::classify(std::span<const Vec3> a, int patch_a, std::span<const Vec3> b, int patch_b,
                                         const std::vector<int>* candidates, std::vector<int>* occluders) const {
   if (!effects_.visibility) return PairClass::kFullyVisible;
-  shaft_queries_.fetch_add(1, std::memory_order_relaxed);
+  shaft_queries_.add();
   return visibility_->classify_among(a, patch_a, b, patch_b, candidates, occluders);
 }
 
 FormFactorEstimate FormFactorEvaluator::sampled(const SurfaceSampler& p, const SurfaceSampler& q, int samples,
                                                 std::uint64_t seed, std::vector<int>* seen_p,
                                                 std::vector<int>* seen_q) const {
-  evaluations_.fetch_add(1, std::memory_order_relaxed);
+  evaluations_.add();
   FormFactorEstimate e;
   const int n = std::max(1, samples);
   detail::Rng rng(seed);
@@ -367,11 +367,11 @@ std::uint64_t FormFactorEvaluator::pair_seed(std::span<const Vec3> a, int pa, st
 
 Work FormFactorEvaluator::work() const {
   Work w;
-  w.point_factor_evaluations = point_factors_.load(std::memory_order_relaxed);
-  w.form_factor_evaluations = evaluations_.load(std::memory_order_relaxed);
-  w.shaft_queries = shaft_queries_.load(std::memory_order_relaxed);
+  w.point_factor_evaluations = point_factors_.load();
+  w.form_factor_evaluations = evaluations_.load();
+  w.shaft_queries = shaft_queries_.load();
   if (visibility_ != nullptr)
-    w.segment_queries = visibility_->counters().segment_queries.load(std::memory_order_relaxed);
+    w.segment_queries = visibility_->counters().segment_queries.load();
   return w;
 }
 
@@ -462,11 +462,11 @@ PairFormFactor FormFactorEvaluator::unoccluded(std::span<const Vec3> receiver, i
                                                std::span<const Vec3> source, int source_patch,
                                                bool with_reverse) const {
   if (kernel_ == FormFactorKernel::kAnalytic) return analytic(receiver, source);
-  evaluations_.fetch_add(1, std::memory_order_relaxed);
+  evaluations_.add();
   int points_r = 0, points_s = 0;
   const PairFormFactor f{contour_factor(receiver, receiver_patch, source, &points_r),
                          with_reverse ? contour_factor(source, source_patch, receiver, &points_s) : 0.0};
-  point_factors_.fetch_add(static_cast<std::uint64_t>(points_r + points_s), std::memory_order_relaxed);
+  point_factors_.add(static_cast<std::uint64_t>(points_r + points_s));
   return f;
 }
 

@@ -104,8 +104,9 @@ struct KernelVisibility {
   int rays = 0;  ///< rays that carry weight (both points in front of each other)
 };
 
-/// Thread-safe: every method may be called from many threads; counters are atomic, and each call
-/// is deterministic (sampling seeds come from the pair's geometry or the caller).
+/// Thread-safe: every method may be called from many threads; counters are per thread
+/// (work_counter.h), and each call is deterministic (sampling seeds come from the pair's geometry
+/// or the caller).
 class FormFactorEvaluator {
  public:
   /// `visibility` may be null only when `effects.visibility` is false. `visibility_samples` is the
@@ -203,11 +204,11 @@ class FormFactorEvaluator {
   /// Counters so far (segment queries from the visibility oracle, which counts every ray).
   Work work() const;
   /// Kernel calls (analytic, Gauss-point and sampled element factors) so far.
-  std::uint64_t evaluations() const { return evaluations_.load(std::memory_order_relaxed); }
+  std::uint64_t evaluations() const { return evaluations_.load(); }
   /// Shaft classifications so far.
-  std::uint64_t visibility_queries() const { return shaft_queries_.load(std::memory_order_relaxed); }
+  std::uint64_t visibility_queries() const { return shaft_queries_.load(); }
   /// Pairs culled as facing away so far.
-  std::uint64_t culled_pairs() const { return culled_.load(std::memory_order_relaxed); }
+  std::uint64_t culled_pairs() const { return culled_.load(); }
 
   const Effects& effects() const { return effects_; }
   FormFactorKernel kernel() const { return kernel_; }
@@ -241,10 +242,10 @@ class FormFactorEvaluator {
   const Visibility* visibility_;
   int visibility_samples_;
   FormFactorKernel kernel_;
-  mutable std::atomic<std::uint64_t> evaluations_{0};
-  mutable std::atomic<std::uint64_t> point_factors_{0};
-  mutable std::atomic<std::uint64_t> shaft_queries_{0};
-  mutable std::atomic<std::uint64_t> culled_{0};
+  mutable WorkCounter evaluations_;
+  mutable WorkCounter point_factors_;
+  mutable WorkCounter shaft_queries_;
+  mutable WorkCounter culled_;
   mutable std::once_flag floating_once_;
   mutable std::atomic<bool> floating_built_{false};  ///< set_sources() is refused from then on
   mutable std::vector<std::vector<std::vector<Vec3>>> sources_by_patch_;

@@ -177,7 +177,7 @@ SolveSummary SolverContext::finish(const ElementHierarchy& hierarchy, std::size_
   summary_.figures["culled_pairs"] = static_cast<double>(evaluator_->culled_pairs());
   if (visibility_) {
     summary_.figures["segment_queries"] =
-        static_cast<double>(visibility_->counters().segment_queries.load(std::memory_order_relaxed));
+        static_cast<double>(visibility_->counters().segment_queries.load());
   }
   if (out != nullptr) {
     auto p = phase("output");

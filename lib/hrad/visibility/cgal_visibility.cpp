@@ -269,7 +269,7 @@ class CgalVisibility final : public Visibility {
   CgalVisibility(const Scene& scene, const VisibilityOptions& options);
 
   bool segment_blocked(const Vec3& a, int patch_a, const Vec3& b, int patch_b) const override {
-    counters().segment_queries.fetch_add(1, std::memory_order_relaxed);
+    counters().segment_queries.add();
     return blocked(to_point(a), patch_a, to_point(b), patch_b);
   }
 
@@ -299,7 +299,7 @@ class CgalVisibility final : public Visibility {
 
   bool segment_blocked_among(const Vec3& a, int patch_a, const Vec3& b, int patch_b,
                              std::span<const int> occluders) const override {
-    counters().segment_queries.fetch_add(1, std::memory_order_relaxed);
+    counters().segment_queries.add();
     return blocked(to_point(a), patch_a, to_point(b), patch_b, &occluders);
   }
 
@@ -383,19 +383,19 @@ class CgalVisibility final : public Visibility {
   int patch_of(TriangleIterator it) const { return triangle_patch_[it - triangles_.begin()]; }
   void count(PairClass c) const {
     VisibilityCounters& k = counters();
-    k.pair_queries.fetch_add(1, std::memory_order_relaxed);
+    k.pair_queries.add();
     switch (c) {
       case PairClass::kFacingAway:
-        k.pairs_facing_away.fetch_add(1, std::memory_order_relaxed);
+        k.pairs_facing_away.add();
         break;
       case PairClass::kFullyVisible:
-        k.pairs_visible.fetch_add(1, std::memory_order_relaxed);
+        k.pairs_visible.add();
         break;
       case PairClass::kFullyHidden:
-        k.pairs_hidden.fetch_add(1, std::memory_order_relaxed);
+        k.pairs_hidden.add();
         break;
       case PairClass::kPartial:
-        k.pairs_partial.fetch_add(1, std::memory_order_relaxed);
+        k.pairs_partial.add();
         break;
     }
   }
@@ -696,7 +696,7 @@ Sight CgalVisibility::sight_among(const Vec3& a, int patch_a, const Vec3& b, int
 
 Sight CgalVisibility::sight_of(const Vec3& a, int patch_a, const Vec3& b, int patch_b,
                                const std::span<const int>* occluders) const {
-  counters().segment_queries.fetch_add(1, std::memory_order_relaxed);
+  counters().segment_queries.add();
   const Point pa = to_point(a), pb = to_point(b);
   const PatchEnd ea = end_on(pa, patch_a), eb = end_on(pb, patch_b);
   if (patch_a < 0 || patch_b < 0 || !ea.on_patch || !eb.on_patch || ea.triangle < 0 || eb.triangle < 0)
@@ -1117,7 +1117,7 @@ VisibilityEstimate CgalVisibility::estimate(std::span<const Vec3> a, int patch_a
     ++facing;
     visible += blocked(pa, patch_a, pb, patch_b) ? 0 : 1;
   }
-  counters().segment_queries.fetch_add(static_cast<std::uint64_t>(facing), std::memory_order_relaxed);
+  counters().segment_queries.add(static_cast<std::uint64_t>(facing));
   if (facing == 0) {  // the facing parts are too small for these samples to find
     e.fraction = 0.0;
     e.error = 0.5;
@@ -1130,7 +1130,7 @@ VisibilityEstimate CgalVisibility::estimate(std::span<const Vec3> a, int patch_a
 
 VisibilityEstimate CgalVisibility::estimate_from_point(const Vec3& x, int patch_x, std::span<const Vec3> b, int patch_b,
                                                        int samples, std::uint64_t seed) const {
-  counters().point_queries.fetch_add(1, std::memory_order_relaxed);
+  counters().point_queries.add();
   VisibilityEstimate e;
   const Point px = to_point(x);
   if (settled(classify_corners(std::span<const Point>(&px, 1), patch_x, corners(b), patch_b), &e)) return e;
@@ -1140,7 +1140,7 @@ VisibilityEstimate CgalVisibility::estimate_from_point(const Vec3& x, int patch_
   const detail::PolygonSampler sb(b);
   int visible = 0;
   for (const Vec2& s : ub) visible += blocked(px, patch_x, to_point(sb.point(s.x(), s.y())), patch_b) ? 0 : 1;
-  counters().segment_queries.fetch_add(static_cast<std::uint64_t>(std::max(samples, 0)), std::memory_order_relaxed);
+  counters().segment_queries.add(static_cast<std::uint64_t>(std::max(samples, 0)));
   e.fraction = samples > 0 ? double(visible) / samples : 0.5;
   e.error = samples > 0 ? detail::fraction_error(visible, samples) : 0.5;
   return e;

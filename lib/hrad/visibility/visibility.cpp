@@ -7,7 +7,7 @@ namespace hrad {
 
 VisibilityEstimate Visibility::estimate_from_point(const Vec3& x, int patch_x, std::span<const Vec3> b, int patch_b,
                                                    int samples, std::uint64_t seed) const {
-  counters_.point_queries.fetch_add(1, std::memory_order_relaxed);
+  counters_.point_queries.add();
   VisibilityEstimate e;
   detail::Rng rng(seed);
   std::vector<Vec2> uv;

@@ -2,7 +2,6 @@
 // The one visibility oracle every solver asks; CGAL stays inside the implementation.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -10,6 +9,7 @@
 
 #include "hrad/core/scene.h"
 #include "hrad/core/types.h"
+#include "hrad/core/work_counter.h"
 
 namespace hrad {
 
@@ -33,20 +33,20 @@ struct VisibilityEstimate {
   PairClass pair_class = PairClass::kFullyVisible;
 };
 
-/// Counters for solver reports; updated atomically (relaxed), safe to share between threads.
+/// Counters for solver reports, safe to add to from many threads (work_counter.h).
 struct VisibilityCounters {
-  std::atomic<std::uint64_t> segment_queries{0};
-  std::atomic<std::uint64_t> pairs_facing_away{0};
-  std::atomic<std::uint64_t> pairs_visible{0};
-  std::atomic<std::uint64_t> pairs_hidden{0};
-  std::atomic<std::uint64_t> pairs_partial{0};
-  std::atomic<std::uint64_t> pair_queries{0};   ///< classify() calls, including those inside estimate()
-  std::atomic<std::uint64_t> point_queries{0};  ///< estimate_from_point() calls
+  WorkCounter segment_queries;
+  WorkCounter pairs_facing_away;
+  WorkCounter pairs_visible;
+  WorkCounter pairs_hidden;
+  WorkCounter pairs_partial;
+  WorkCounter pair_queries;   ///< classify() calls, including those inside estimate()
+  WorkCounter point_queries;  ///< estimate_from_point() calls
 
   void reset() {
-    for (auto* c : {&segment_queries, &pairs_facing_away, &pairs_visible, &pairs_hidden, &pairs_partial, &pair_queries,
-                    &point_queries})
-      c->store(0, std::memory_order_relaxed);
+    for (WorkCounter* c : {&segment_queries, &pairs_facing_away, &pairs_visible, &pairs_hidden, &pairs_partial,
+                           &pair_queries, &point_queries})
+      c->reset();
   }
 };
 
