@@ -22,7 +22,12 @@ ClusterTree::ClusterTree(const Scene& scene) : scene_(scene) {
   clusters_.reserve(static_cast<std::size_t>(std::max(0, n - 1)));
   root_ = build(0, n, -1, centroids);
   samplers_.reserve(static_cast<std::size_t>(n));
-  for (const Patch& patch : scene.patches) samplers_.emplace_back(patch.vertices);
+  position_.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const int patch = order_[static_cast<std::size_t>(i)];
+    samplers_.emplace_back(scene.patches[static_cast<std::size_t>(patch)].vertices);
+    position_[static_cast<std::size_t>(patch)] = i;
+  }
   cumulative_area_.resize(static_cast<std::size_t>(n) + 1, 0.0);
   for (int i = 0; i < n; ++i)
     cumulative_area_[static_cast<std::size_t>(i) + 1] =
@@ -104,9 +109,8 @@ int ClusterTree::sample(int index, double w, double u, double v, Vec3* point) co
   auto it = std::upper_bound(cumulative_area_.begin() + c.begin + 1, cumulative_area_.begin() + c.end + 1, target);
   int i = static_cast<int>(it - cumulative_area_.begin()) - 1;
   i = std::clamp(i, c.begin, c.end - 1);
-  const int patch = order_[static_cast<std::size_t>(i)];
-  *point = samplers_[static_cast<std::size_t>(patch)].point(u, v);
-  return patch;
+  *point = samplers_[static_cast<std::size_t>(i)].point(u, v);
+  return order_[static_cast<std::size_t>(i)];
 }
 
 }  // namespace hrad

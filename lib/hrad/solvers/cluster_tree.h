@@ -73,7 +73,7 @@ class ClusterTree {
   int sample(int index, double w, double u, double v, Vec3* point) const;
   /// A point uniform by area on patch `patch` from two numbers in [0, 1); returns `patch`.
   int sample_patch(int patch, double u, double v, Vec3* point) const {
-    *point = samplers_[static_cast<std::size_t>(patch)].point(u, v);
+    *point = samplers_[static_cast<std::size_t>(position_[static_cast<std::size_t>(patch)])].point(u, v);
     return patch;
   }
 
@@ -85,7 +85,10 @@ class ClusterTree {
   std::vector<int> order_;               ///< patches, grouped by cluster ranges
   std::vector<double> cumulative_area_;  ///< prefix sums of area along order_ (size + 1)
   std::vector<int> patch_parent_;
-  std::vector<detail::PolygonSampler> samplers_;  ///< one per patch: sample() draws millions of points
+  std::vector<int> position_;  ///< each patch's position in order_
+  /// One per patch, in order_'s order, so that a cluster's samplers lie together: sample() draws
+  /// millions of points, and a sampler far from the last one read costs a cache miss.
+  std::vector<detail::PolygonSampler> samplers_;
   NodeRef root_ = kNoNode;
 };
 

@@ -409,6 +409,20 @@ class CgalVisibility final : public Visibility {
   std::vector<int> patch_axis_;                       ///< the axis of each patch's largest normal component
   std::vector<std::vector<Point>> patch_points_;      ///< each patch's vertices
   std::vector<double> patch_level_;                   ///< the patch's coordinate on that axis when constant, else NaN
+  /// What end_on() reads of a patch, together: its fan triangles' range, axis and level.
+  struct PatchFrame {
+    int begin = 0, end = 0, axis = 0;
+    double level = 0.0;
+  };
+  std::vector<PatchFrame> patch_frame_;
+  /// Each fan triangle's shadow along its patch's axis and that shadow's orientation (COLLINEAR
+  /// when the triangle is seen edge-on along the axis, only in a non-planar patch): end_on() finds
+  /// the triangle under a point by three exact 2D orientations each, on compact data.
+  struct FanShadow {
+    std::array<K::Point_2, 3> p;
+    CGAL::Orientation orientation = CGAL::COLLINEAR;
+  };
+  std::vector<FanShadow> fan_shadow_;
   std::vector<char> patch_planar_;                    ///< all vertices exactly coplanar
   std::vector<Point> vertices_;                       ///< every patch vertex, for the convex-hull test
   double magnitude_ = 0.0;                            ///< largest |coordinate| of the scene
@@ -457,6 +471,18 @@ CgalVisibility::CgalVisibility(const Scene& scene, const VisibilityOptions& opti
     patch_axis_.push_back(axis);
     const bool level = std::all_of(v.begin(), v.end(), [&](const Vec3& x) { return x[axis] == v[0][axis]; });
     patch_level_.push_back(level ? v[0][axis] : std::numeric_limits<double>::quiet_NaN());
+  }
+  for (std::size_t p = 0; p < patch_triangles_.size(); ++p) {
+    const auto [begin, end] = patch_triangles_[p];
+    const int k = patch_axis_[p], i = (k + 1) % 3, j = (k + 2) % 3;
+    patch_frame_.push_back({begin, end, k, patch_level_[p]});
+    for (int t = begin; t < end; ++t) {
+      const Triangle& tri = triangles_[static_cast<std::size_t>(t)];
+      FanShadow f;
+      for (int m = 0; m < 3; ++m) f.p[static_cast<std::size_t>(m)] = K::Point_2(tri[m][i], tri[m][j]);
+      f.orientation = CGAL::orientation(f.p[0], f.p[1], f.p[2]);
+      fan_shadow_.push_back(f);
+    }
   }
   for (const Triangle& t : triangles_) {
     detail::Triangle3 c;
@@ -558,21 +584,19 @@ CgalVisibility::PatchEnd CgalVisibility::end_on(const Point& x, int patch) const
   PatchEnd e;
   e.end.x = Vec3(x.x(), x.y(), x.z());
   if (patch < 0) return e;
-  const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
-  const int k = patch_axis_[static_cast<std::size_t>(patch)], i = (k + 1) % 3, j = (k + 2) % 3;
+  const PatchFrame& frame = patch_frame_[static_cast<std::size_t>(patch)];
+  const int k = frame.axis, i = (k + 1) % 3, j = (k + 2) % 3;
   e.end.axis = k;
   // The fan triangle whose shadow along axis k holds x's (exact: dropping a coordinate is exact).
-  using Point2 = K::Point_2;
-  const Point2 q(x[i], x[j]);
+  const K::Point_2 q(x[i], x[j]);
   int fallback = -1;
-  for (int t = begin; t < end && e.triangle < 0; ++t) {
-    const Triangle& tri = triangles_[static_cast<std::size_t>(t)];
-    const Point2 p[3] = {{tri[0][i], tri[0][j]}, {tri[1][i], tri[1][j]}, {tri[2][i], tri[2][j]}};
-    const CGAL::Orientation o = CGAL::orientation(p[0], p[1], p[2]);
-    if (o == CGAL::COLLINEAR) continue;  // seen edge-on along k (only in a non-planar patch)
+  for (int t = frame.begin; t < frame.end && e.triangle < 0; ++t) {
+    const FanShadow& f = fan_shadow_[static_cast<std::size_t>(t)];
+    if (f.orientation == CGAL::COLLINEAR) continue;  // seen edge-on along k
     if (fallback < 0) fallback = t;
     bool inside = true;
-    for (int m = 0; m < 3 && inside; ++m) inside = CGAL::orientation(p[m], p[(m + 1) % 3], q) != -o;
+    for (std::size_t m = 0; m < 3 && inside; ++m)
+      inside = CGAL::orientation(f.p[m], f.p[(m + 1) % 3], q) != -f.orientation;
     if (inside) e.triangle = t;
   }
   if (e.triangle < 0) {
@@ -582,8 +606,7 @@ CgalVisibility::PatchEnd CgalVisibility::end_on(const Point& x, int patch) const
   }
   // On an axis-aligned patch a double point is on the surface when its coordinate is the patch's;
   // elsewhere it almost never is, and projecting a point that is gives the point itself.
-  const double level = patch_level_[static_cast<std::size_t>(patch)];
-  if (std::isnan(level) || x[k] != level) e.end.plane = &triangle_coords_[static_cast<std::size_t>(e.triangle)];
+  if (std::isnan(frame.level) || x[k] != frame.level) e.end.plane = &triangle_coords_[static_cast<std::size_t>(e.triangle)];
   return e;
 }
 

@@ -42,12 +42,13 @@ Vec3 fan_point(std::span<const Vec3> vertices, std::span<const double> cdf, doub
 
 PolygonSampler::PolygonSampler(std::span<const Vec3> polygon)
     : vertices_(polygon.begin(), polygon.end()), cdf_(polygon.size() >= 3 ? polygon.size() - 2 : 0) {
-  area_ = fan_cdf(vertices_, cdf_.data());
+  area_ = fan_cdf(std::span<const Vec3>(vertices_.data(), vertices_.size()), cdf_.data());
 }
 
 Vec3 PolygonSampler::point(double u, double v) const {
   if (cdf_.empty()) return vertices_.empty() ? Vec3::Zero() : vertices_[0];
-  return fan_point(vertices_, cdf_, u, v);
+  return fan_point(std::span<const Vec3>(vertices_.data(), vertices_.size()),
+                   std::span<const double>(cdf_.data(), cdf_.size()), u, v);
 }
 
 Vec3 polygon_point(std::span<const Vec3> polygon, double u, double v) {

@@ -7,6 +7,8 @@
 #include <span>
 #include <vector>
 
+#include <boost/container/small_vector.hpp>
+
 #include "hrad/core/rng.h"
 #include "hrad/core/types.h"
 
@@ -16,7 +18,9 @@ namespace hrad::detail {
 /// the fan from vertex 0 (by area) and both coordinates are remapped into it with the
 /// square-root warp (Turk 1990, "Generating random points in triangles"). Points are formed as
 /// v0 + s (vi - v0) + t (vi+1 - v0), so a coordinate that is constant over the polygon (an
-/// axis-aligned wall) is reproduced exactly.
+/// axis-aligned wall) is reproduced exactly. A triangle's or a quad's data is held in the sampler
+/// itself: an array of samplers (ClusterTree) then reads one place per point, and building one
+/// allocates nothing.
 class PolygonSampler {
  public:
   explicit PolygonSampler(std::span<const Vec3> polygon);
@@ -24,8 +28,8 @@ class PolygonSampler {
   double area() const { return area_; }
 
  private:
-  std::vector<Vec3> vertices_;
-  std::vector<double> cdf_;  ///< cumulative fan-triangle area, normalised to end at 1
+  boost::container::small_vector<Vec3, 4> vertices_;
+  boost::container::small_vector<double, 2> cdf_;  ///< cumulative fan-triangle area, normalised to end at 1
   double area_ = 0.0;
 };
 
