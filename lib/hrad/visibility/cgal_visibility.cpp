@@ -406,12 +406,11 @@ class CgalVisibility final : public Visibility {
   std::vector<std::pair<int, int>> patch_triangles_;  ///< [begin, end) into triangles_ per patch
   std::vector<detail::Triangle3> triangle_coords_;    ///< triangles_ as doubles
   std::vector<int> triangle_plane_;                   ///< plane_classes() of triangles_
-  std::vector<int> patch_axis_;                       ///< the axis of each patch's largest normal component
   std::vector<std::vector<Point>> patch_points_;      ///< each patch's vertices
-  std::vector<double> patch_level_;                   ///< the patch's coordinate on that axis when constant, else NaN
-  /// What end_on() reads of a patch, together: its fan triangles' range, axis and level.
+  /// The axis of a patch's largest normal component and the patch's coordinate on that axis when
+  /// constant (else NaN).
   struct PatchFrame {
-    int begin = 0, end = 0, axis = 0;
+    int axis = 0;
     double level = 0.0;
   };
   std::vector<PatchFrame> patch_frame_;
@@ -468,15 +467,12 @@ CgalVisibility::CgalVisibility(const Scene& scene, const VisibilityOptions& opti
     int axis = 0;
     for (int k = 1; k < 3; ++k)
       if (std::abs(n[k]) > std::abs(n[axis])) axis = k;
-    patch_axis_.push_back(axis);
     const bool level = std::all_of(v.begin(), v.end(), [&](const Vec3& x) { return x[axis] == v[0][axis]; });
-    patch_level_.push_back(level ? v[0][axis] : std::numeric_limits<double>::quiet_NaN());
+    patch_frame_.push_back({axis, level ? v[0][axis] : std::numeric_limits<double>::quiet_NaN()});
   }
   for (std::size_t p = 0; p < patch_triangles_.size(); ++p) {
-    const auto [begin, end] = patch_triangles_[p];
-    const int k = patch_axis_[p], i = (k + 1) % 3, j = (k + 2) % 3;
-    patch_frame_.push_back({begin, end, k, patch_level_[p]});
-    for (int t = begin; t < end; ++t) {
+    const int k = patch_frame_[p].axis, i = (k + 1) % 3, j = (k + 2) % 3;
+    for (int t = patch_triangles_[p].first; t < patch_triangles_[p].second; ++t) {
       const Triangle& tri = triangles_[static_cast<std::size_t>(t)];
       FanShadow f;
       for (int m = 0; m < 3; ++m) f.p[static_cast<std::size_t>(m)] = K::Point_2(tri[m][i], tri[m][j]);
@@ -584,13 +580,14 @@ CgalVisibility::PatchEnd CgalVisibility::end_on(const Point& x, int patch) const
   PatchEnd e;
   e.end.x = Vec3(x.x(), x.y(), x.z());
   if (patch < 0) return e;
+  const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
   const PatchFrame& frame = patch_frame_[static_cast<std::size_t>(patch)];
   const int k = frame.axis, i = (k + 1) % 3, j = (k + 2) % 3;
   e.end.axis = k;
   // The fan triangle whose shadow along axis k holds x's (exact: dropping a coordinate is exact).
   const K::Point_2 q(x[i], x[j]);
   int fallback = -1;
-  for (int t = frame.begin; t < frame.end && e.triangle < 0; ++t) {
+  for (int t = begin; t < end && e.triangle < 0; ++t) {
     const FanShadow& f = fan_shadow_[static_cast<std::size_t>(t)];
     if (f.orientation == CGAL::COLLINEAR) continue;  // seen edge-on along k
     if (fallback < 0) fallback = t;
@@ -612,15 +609,14 @@ CgalVisibility::PatchEnd CgalVisibility::end_on(const Point& x, int patch) const
 
 bool CgalVisibility::on_surface(std::span<const Vec3> poly, int patch) const {
   if (patch < 0) return true;
-  const double level = patch_level_[static_cast<std::size_t>(patch)];
-  if (std::isnan(level)) {
+  const PatchFrame& frame = patch_frame_[static_cast<std::size_t>(patch)];
+  if (std::isnan(frame.level)) {
     // Not axis-aligned: only the patch's own vertices are known to lie on it without arithmetic.
     const auto& own = patch_points_[static_cast<std::size_t>(patch)];
     return std::all_of(poly.begin(), poly.end(),
                        [&](const Vec3& v) { return std::find(own.begin(), own.end(), to_point(v)) != own.end(); });
   }
-  const int k = patch_axis_[static_cast<std::size_t>(patch)];
-  return std::all_of(poly.begin(), poly.end(), [&](const Vec3& v) { return v[k] == level; });
+  return std::all_of(poly.begin(), poly.end(), [&](const Vec3& v) { return v[frame.axis] == frame.level; });
 }
 
 bool CgalVisibility::patches_face(int pa, int pb) const {
