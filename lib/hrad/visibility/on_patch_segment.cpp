@@ -18,17 +18,14 @@ IK::Point_3 from_bounds(const std::array<double, 6>& b) {
 }
 
 // The sign of orient3d(p, q, r, s) = ((q - p) x (r - p)) . (s - p) in doubles when it is certain
-// for every placement of p and q within `w` of the given points (r, s exact), else 0. A
-// semi-static filter (Shewchuk 1997; Meyer & Pion 2008): with L the largest coordinate difference
-// among the points plus 2w, the rounding error is below 2^-40 L^3 (about 2^-50 times a few terms
-// in fact), and moving two points by w changes the determinant by less than 12 L^2 w per point.
-int certain_orientation(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, double w) {
+// for every placement of two of the points within `w` of the given ones (the other two exact),
+// else 0. A semi-static filter (Shewchuk 1997; Meyer & Pion 2008): with L at least the largest
+// coordinate difference among the points (`spread`, e.g. the extent of a box holding them) plus 2w,
+// the rounding error is below 2^-40 L^3 (about 2^-50 times a few terms in fact), and moving two
+// points by w changes the determinant by less than 12 L^2 w per point.
+int certain_orientation(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, double spread, double w) {
   const Vec3 u = q - p, v = r - p, x = s - p;
-  double l = 0.0;
-  for (const Vec3* d : {&u, &v, &x}) l = std::max(l, d->cwiseAbs().maxCoeff());
-  const Vec3 rs = s - r, qr = r - q, qs = s - q;
-  for (const Vec3* d : {&rs, &qr, &qs}) l = std::max(l, d->cwiseAbs().maxCoeff());
-  l += 2.0 * w;
+  const double l = spread + 2.0 * w;
   const double det = u.cross(v).dot(x);
   const double bound = 0x1p-40 * l * l * l + 24.0 * l * l * w;
   if (!std::isfinite(det) || !std::isfinite(bound)) return 0;
@@ -83,13 +80,18 @@ bool OnPatchSegment::misses(const Triangle3& t, bool a_in_plane, bool b_in_plane
   const Vec3& pa = a_mid_;
   const Vec3& pb = b_mid_;
   const double w = reach_;
+  // One spread for the five tests: the extent of the box around the segment and the triangle.
+  const Vec3 lo = pa.cwiseMin(pb).cwiseMin(t[0]).cwiseMin(t[1]).cwiseMin(t[2]);
+  const Vec3 hi = pa.cwiseMax(pb).cwiseMax(t[0]).cwiseMax(t[1]).cwiseMax(t[2]);
+  const double spread = (hi - lo).maxCoeff();
   if (!a_in_plane && !b_in_plane) {
-    const int oa = certain_orientation(t[0], t[1], t[2], pa, w), ob = certain_orientation(t[0], t[1], t[2], pb, w);
+    const int oa = certain_orientation(t[0], t[1], t[2], pa, spread, w);
+    const int ob = certain_orientation(t[0], t[1], t[2], pb, spread, w);
     if (oa != 0 && oa == ob) return true;
   }
   bool pos = false, neg = false;
   for (int m = 0; m < 3; ++m) {
-    const int o = certain_orientation(pa, pb, t[m], t[(m + 1) % 3], w);
+    const int o = certain_orientation(pa, pb, t[m], t[(m + 1) % 3], spread, w);
     pos |= o > 0;
     neg |= o < 0;
   }
