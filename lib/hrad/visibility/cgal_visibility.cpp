@@ -422,9 +422,9 @@ class CgalVisibility final : public Visibility {
     CGAL::Orientation orientation = CGAL::COLLINEAR;
   };
   std::vector<FanShadow> fan_shadow_;
-  std::vector<char> patch_planar_;                    ///< all vertices exactly coplanar
-  std::vector<Point> vertices_;                       ///< every patch vertex, for the convex-hull test
-  double magnitude_ = 0.0;                            ///< largest |coordinate| of the scene
+  std::vector<char> patch_planar_;  ///< all vertices exactly coplanar
+  std::vector<Point> vertices_;     ///< every patch vertex, for the convex-hull test
+  double magnitude_ = 0.0;          ///< largest |coordinate| of the scene
   Tree tree_;
   VisibilityOptions options_;
   detail::SegmentBvh bvh_;               ///< segment queries (unless options_ ask for tree_)
@@ -603,7 +603,8 @@ CgalVisibility::PatchEnd CgalVisibility::end_on(const Point& x, int patch) const
   }
   // On an axis-aligned patch a double point is on the surface when its coordinate is the patch's;
   // elsewhere it almost never is, and projecting a point that is gives the point itself.
-  if (std::isnan(frame.level) || x[k] != frame.level) e.end.plane = &triangle_coords_[static_cast<std::size_t>(e.triangle)];
+  if (std::isnan(frame.level) || x[k] != frame.level)
+    e.end.plane = &triangle_coords_[static_cast<std::size_t>(e.triangle)];
   return e;
 }
 
