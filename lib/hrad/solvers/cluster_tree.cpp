@@ -13,14 +13,19 @@ ClusterTree::ClusterTree(const Scene& scene) : scene_(scene) {
   const int n = static_cast<int>(scene.patches.size());
   assert(n >= 1);
   std::vector<Vec3> centroids(static_cast<std::size_t>(n));
+  std::vector<double> diagonals(static_cast<std::size_t>(n));
   order_.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
-    centroids[static_cast<std::size_t>(i)] = polygon_centroid(scene.patches[static_cast<std::size_t>(i)].vertices);
+    const auto& v = scene.patches[static_cast<std::size_t>(i)].vertices;
+    centroids[static_cast<std::size_t>(i)] = polygon_centroid(v);
+    Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+    for (const Vec3& x : v) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    diagonals[static_cast<std::size_t>(i)] = v.empty() ? 0.0 : (hi - lo).norm();
     order_[static_cast<std::size_t>(i)] = i;
   }
   patch_parent_.assign(static_cast<std::size_t>(n), -1);
   clusters_.reserve(static_cast<std::size_t>(std::max(0, n - 1)));
-  root_ = build(0, n, -1, centroids);
+  root_ = build(0, n, -1, centroids, diagonals);
   samplers_.reserve(static_cast<std::size_t>(n));
   position_.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
@@ -35,7 +40,8 @@ ClusterTree::ClusterTree(const Scene& scene) : scene_(scene) {
         scene.patches[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])].area;
 }
 
-NodeRef ClusterTree::build(int begin, int end, int parent, const std::vector<Vec3>& centroids) {
+NodeRef ClusterTree::build(int begin, int end, int parent, const std::vector<Vec3>& centroids,
+                           const std::vector<double>& diagonals) {
   if (end - begin == 1) {
     const int patch = order_[static_cast<std::size_t>(begin)];
     patch_parent_[static_cast<std::size_t>(patch)] = parent;
@@ -69,6 +75,22 @@ NodeRef ClusterTree::build(int begin, int end, int parent, const std::vector<Vec
   c.max_projected_area = std::min(c.area, plus.max(minus).matrix().norm());
   c.axis_plus = plus;
   c.axis_minus = minus;
+  clusters_[static_cast<std::size_t>(index)] = c;
+  // Patches as large as much of the cluster (a city's ground, sky or enclosing walls among its
+  // buildings) would make every cluster above them as large, so that none of them is ever far from
+  // anything: they go together as one child, the rest as the other (kept in order, so the tree is
+  // the same on every platform). A group made only of such patches is median-split.
+  const double large = kAlonePatch * 2.0 * c.radius;
+  const auto rest = std::stable_partition(order_.begin() + begin, order_.begin() + end, [&](int patch) {
+    return diagonals[static_cast<std::size_t>(patch)] > large;
+  });
+  if (const int split = static_cast<int>(rest - order_.begin()); split > begin && split < end) {
+    const NodeRef alone = build(begin, split, index, centroids, diagonals);
+    const NodeRef others = build(split, end, index, centroids, diagonals);
+    clusters_[static_cast<std::size_t>(index)].children[0] = alone;
+    clusters_[static_cast<std::size_t>(index)].children[1] = others;
+    return cluster_ref(index);
+  }
   // Median split of the centroids along the longest axis of their box (ties by patch index, so
   // the tree is the same on every platform).
   int axis = 0;
@@ -79,9 +101,8 @@ NodeRef ClusterTree::build(int begin, int end, int parent, const std::vector<Vec
     const double ca = centroids[static_cast<std::size_t>(a)][axis], cb = centroids[static_cast<std::size_t>(b)][axis];
     return ca < cb || (ca == cb && a < b);
   });
-  clusters_[static_cast<std::size_t>(index)] = c;
-  const NodeRef left = build(begin, mid, index, centroids);
-  const NodeRef right = build(mid, end, index, centroids);
+  const NodeRef left = build(begin, mid, index, centroids, diagonals);
+  const NodeRef right = build(mid, end, index, centroids, diagonals);
   clusters_[static_cast<std::size_t>(index)].children[0] = left;
   clusters_[static_cast<std::size_t>(index)].children[1] = right;
   return cluster_ref(index);

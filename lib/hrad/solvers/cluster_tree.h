@@ -29,6 +29,9 @@ inline constexpr NodeRef cluster_ref(int index) { return -2 - index; }
 /// noise and a share divided by a projected area of that size would be too. Written out so that
 /// every sum of shares adds the same bits.
 inline constexpr double kGrazingCosine = 1e-12;
+/// Patches whose box diagonals pass this fraction of their cluster's box diagonal form a child of
+/// their own in ClusterTree, the cluster's other patches the other child.
+inline constexpr double kAlonePatch = 0.5;
 inline double facing_cosine(const Vec3& n, const Vec3& d) {
   const double c = n.x() * d.x() + n.y() * d.y() + n.z() * d.z();
   return c > kGrazingCosine ? c : 0.0;
@@ -78,7 +81,8 @@ class ClusterTree {
   }
 
  private:
-  NodeRef build(int begin, int end, int parent, const std::vector<Vec3>& centroids);
+  NodeRef build(int begin, int end, int parent, const std::vector<Vec3>& centroids,
+                const std::vector<double>& diagonals);
 
   const Scene& scene_;
   std::vector<Cluster> clusters_;
