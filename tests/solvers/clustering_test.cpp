@@ -109,6 +109,44 @@ TEST(ClusterTree, CoversEveryPatchOnceWithConsistentBoxesAreasAndBounds) {
   }
 }
 
+// Guarantee: patches as large as much of their cluster (box diagonal above kAlonePatch of the
+// cluster's) form one child of that cluster, the rest the other: a ground and a sky over a town of
+// small blocks are the root's one child, the blocks the other, and the rule holds in every cluster.
+TEST(ClusterTree, LargePatchesFormAChildOfTheirOwn) {
+  Scene s;
+  s.materials = {gray(0.5, 0), gray(0.5, 1)};
+  const double size = 100.0;
+  test::add_polygon(s, {{0, 0, 0}, {size, 0, 0}, {size, 0, size}, {0, 0, size}}, Vec3::UnitY(), 0);
+  test::add_polygon(s, {{0, 20, 0}, {size, 20, 0}, {size, 20, size}, {0, 20, size}}, -Vec3::UnitY(), 1);
+  for (int i = 0; i < 6; ++i)
+    for (int k = 0; k < 6; ++k)
+      add_block(s, 10.0 + 14 * i, 14.0 + 14 * i, 0.0, 3.0 + i, 10.0 + 14 * k, 13.0 + 14 * k, 0);
+  const ClusterTree tree(s);
+  auto patches_of = [&](NodeRef r) {
+    std::vector<int> p =
+        is_cluster(r) ? std::vector<int>(tree.patches(cluster_index(r)).begin(), tree.patches(cluster_index(r)).end())
+                      : std::vector<int>{static_cast<int>(r)};
+    std::sort(p.begin(), p.end());
+    return p;
+  };
+  const Cluster& root = tree.cluster(cluster_index(tree.root()));
+  EXPECT_EQ(patches_of(root.children[0]), (std::vector<int>{0, 1}));
+  EXPECT_EQ(patches_of(root.children[1]).size(), s.patches.size() - 2);
+  for (std::size_t c = 0; c < tree.size(); ++c) {
+    const Cluster& k = tree.cluster(static_cast<int>(c));
+    std::vector<int> large;
+    for (const int p : tree.patches(static_cast<int>(c))) {
+      const auto& v = s.patches[static_cast<std::size_t>(p)].vertices;
+      Vec3 lo = v[0], hi = v[0];
+      for (const Vec3& x : v) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+      if ((hi - lo).norm() > kAlonePatch * 2.0 * k.radius) large.push_back(p);
+    }
+    std::sort(large.begin(), large.end());
+    if (!large.empty() && large.size() < tree.patches(static_cast<int>(c)).size())
+      EXPECT_EQ(patches_of(k.children[0]), large) << "cluster " << c;
+  }
+}
+
 TEST(ClusterTree, ProjectedAreaOfAClosedBoxIsItsShadow) {
   // A closed convex box shows sum_k |d_k| A_k towards d (one face per axis: Cauchy's shadow),
   // and its mean over directions is a quarter of its area (Cauchy's surface-area formula).

@@ -2,8 +2,9 @@
 // clustering algorithm for radiosity in complex environments" (SIGGRAPH '94), and Sillion 1995,
 // "A unified hierarchical algorithm for global illumination with scattering volumes and object
 // clusters" (IEEE TVCG 1(3)). A binary volume hierarchy over the patches, built by median splits
-// of their centroids along the longest axis; its leaves are the patches' quadtree roots, so the
-// whole scene hangs below one root and can be linked from a single root self-link.
+// of their centroids along the longest axis, except that patches as large as much of their cluster
+// form a child of their own (kAlonePatch); its leaves are the patches' quadtree roots, so the whole
+// scene hangs below one root and can be linked from a single root self-link.
 #pragma once
 
 #include <cstdint>
