@@ -109,9 +109,10 @@ TEST(ClusterTree, CoversEveryPatchOnceWithConsistentBoxesAreasAndBounds) {
   }
 }
 
-// Guarantee: patches as large as much of their cluster (box diagonal above kAlonePatch of the
-// cluster's) form one child of that cluster, the rest the other: a ground and a sky over a town of
-// small blocks are the root's one child, the blocks the other, and the rule holds in every cluster.
+// Guarantee: patches as large as much of their cluster (box diagonal above kLargePatchFraction of
+// the cluster's) form one child of that cluster, the rest the other: a ground and a sky over a town
+// of small blocks are the root's one child, the blocks the other, and the rule holds in every
+// cluster.
 TEST(ClusterTree, LargePatchesFormAChildOfTheirOwn) {
   Scene s;
   s.materials = {gray(0.5, 0), gray(0.5, 1)};
@@ -139,7 +140,7 @@ TEST(ClusterTree, LargePatchesFormAChildOfTheirOwn) {
       const auto& v = s.patches[static_cast<std::size_t>(p)].vertices;
       Vec3 lo = v[0], hi = v[0];
       for (const Vec3& x : v) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-      if ((hi - lo).norm() > kAlonePatch * 2.0 * k.radius) large.push_back(p);
+      if ((hi - lo).norm() > kLargePatchFraction * 2.0 * k.radius) large.push_back(p);
     }
     std::sort(large.begin(), large.end());
     if (!large.empty() && large.size() < tree.patches(static_cast<int>(c)).size())

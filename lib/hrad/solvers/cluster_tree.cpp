@@ -80,14 +80,14 @@ NodeRef ClusterTree::build(int begin, int end, int parent, const std::vector<Vec
   // buildings) would make every cluster above them as large, so that none of them is ever far from
   // anything: they go together as one child, the rest as the other (kept in order, so the tree is
   // the same on every platform). A group made only of such patches is median-split.
-  const double large = kAlonePatch * 2.0 * c.radius;
+  const double large = kLargePatchFraction * 2.0 * c.radius;
   const auto rest = std::stable_partition(order_.begin() + begin, order_.begin() + end, [&](int patch) {
     return diagonals[static_cast<std::size_t>(patch)] > large;
   });
   if (const int split = static_cast<int>(rest - order_.begin()); split > begin && split < end) {
-    const NodeRef alone = build(begin, split, index, centroids, diagonals);
+    const NodeRef large_ones = build(begin, split, index, centroids, diagonals);
     const NodeRef others = build(split, end, index, centroids, diagonals);
-    clusters_[static_cast<std::size_t>(index)].children[0] = alone;
+    clusters_[static_cast<std::size_t>(index)].children[0] = large_ones;
     clusters_[static_cast<std::size_t>(index)].children[1] = others;
     return cluster_ref(index);
   }

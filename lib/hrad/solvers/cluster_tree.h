@@ -3,8 +3,8 @@
 // "A unified hierarchical algorithm for global illumination with scattering volumes and object
 // clusters" (IEEE TVCG 1(3)). A binary volume hierarchy over the patches, built by median splits
 // of their centroids along the longest axis, except that patches as large as much of their cluster
-// form a child of their own (kAlonePatch); its leaves are the patches' quadtree roots, so the whole
-// scene hangs below one root and can be linked from a single root self-link.
+// form a child of their own (kLargePatchFraction); its leaves are the patches' quadtree roots, so
+// the whole scene hangs below one root and can be linked from a single root self-link.
 #pragma once
 
 #include <cstdint>
@@ -32,7 +32,7 @@ inline constexpr NodeRef cluster_ref(int index) { return -2 - index; }
 inline constexpr double kGrazingCosine = 1e-12;
 /// Patches whose box diagonals pass this fraction of their cluster's box diagonal form a child of
 /// their own in ClusterTree, the cluster's other patches the other child.
-inline constexpr double kAlonePatch = 0.5;
+inline constexpr double kLargePatchFraction = 0.5;
 inline double facing_cosine(const Vec3& n, const Vec3& d) {
   const double c = n.x() * d.x() + n.y() * d.y() + n.z() * d.z();
   return c > kGrazingCosine ? c : 0.0;
