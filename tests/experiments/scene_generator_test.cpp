@@ -26,6 +26,29 @@ TEST(SceneGenerator, PolygonCountIsWithinTheStatedSlackOfTheRequest) {
   }
 }
 
+// A scale family's sizes must be alike: a city whose last blocks stood empty because the count ran
+// out would be a lighter scene per polygon at small sizes (half of a 1k city's blocks were bare).
+TEST(SceneGenerator, GridLayoutsAreWholeGridsNearTheRequest) {
+  for (const int n : {1000, 4000, 16000})
+    for (const std::uint64_t seed : {1, 2, 3}) {
+      for (const SceneLayout layout : {SceneLayout::kPillars, SceneLayout::kCity}) {
+        const GeneratedScene g = generate_scene({n, seed, layout});
+        const double count = static_cast<double>(g.faces.size());
+        EXPECT_NEAR(count, n, kGeneratedGridSlack * n) << n << " " << seed;
+      }
+      const GeneratedScene city = generate_scene({n, seed, SceneLayout::kCity});
+      std::map<int, int> faces;  // per group
+      for (const GeneratedScene::Face& f : city.faces) ++faces[f.group];
+      int buildings = 0;
+      for (const auto& [group, count] : faces)
+        if (city.groups[static_cast<std::size_t>(group)].starts_with("building_")) {
+          ++buildings;
+          EXPECT_GE(count, 5);  // four walls and a roof at least
+        }
+      EXPECT_EQ(buildings, 4 * city.cells_x * city.cells_z) << n << " " << seed;
+    }
+}
+
 TEST(SceneGenerator, SameSeedSameSceneOtherSeedOtherScene) {
   const GeneratedScene a = generate_scene({1000, 3}), b = generate_scene({1000, 3}), c = generate_scene({1000, 4});
   ASSERT_EQ(a.faces.size(), b.faces.size());

@@ -181,34 +181,41 @@ GeneratedScene pillar_hall(int n) {
 
 // City blocks: a ground of 10 m tiles, buildings of random footprint and storeys (walls tiled by
 // storey and bay, flat roofs) on a grid of 40 m blocks separated by streets, and an emitting sky
-// quad high above, facing down. Open: light leaves at the sides, as from real city meshes.
+// quad high above, facing down. Open: light leaves at the sides, as from real city meshes. Every
+// block holds its four buildings, so that cities of every size are alike (a scale family): the grid
+// is the one whose expected polygon count is nearest n.
 GeneratedScene city(int n, Rng& rng) {
   constexpr double block = 40.0, street = 12.0, tile = 10.0, storey = 3.5, bay = 5.0;
+  constexpr double pitch = block + street;
+  auto ground_tiles = [&](int blocks) { return static_cast<int>(std::ceil((blocks * pitch + street) / tile)); };
+  // A building has 2 (w + d) / bay walls a storey (w, d: 1-3 bays, 8 on average) on 4.5 storeys on
+  // average, and a roof: 37 faces; a block, four.
+  auto expected = [&](int bx, int bz) { return 148.0 * bx * bz + ground_tiles(bx) * ground_tiles(bz) + 1.0; };
+  int blocks_x = 1, blocks_z = 1;
+  for (int bx = 1; expected(bx, bx) < 2.0 * n; ++bx)
+    for (int bz = bx; bz <= bx + 1; ++bz)
+      if (std::abs(expected(bx, bz) - n) < std::abs(expected(blocks_x, blocks_z) - n)) blocks_x = bx, blocks_z = bz;
   GeneratedScene s;
   s.materials = generated_materials();
   s.materials[kLight].emission = Rgb(1.0, 1.0, 1.0);  // the sky: exitance 1
   Builder b(s);
-  // About 190 faces per block (four buildings and the ground under it): enough blocks for n, the
-  // last buildings left out once n is reached.
-  const int blocks = std::max(1, static_cast<int>(std::ceil(std::sqrt(n / 190.0))));
-  const double pitch = block + street, size = blocks * pitch + street;
-  s.cells_x = s.cells_z = blocks;
+  const double size_x = blocks_x * pitch + street, size_z = blocks_z * pitch + street;
+  s.cells_x = blocks_x;
+  s.cells_z = blocks_z;
   const int ground_group = b.group("ground"), sky_group = b.group("sky");
-  const int ground_tiles = static_cast<int>(std::ceil(size / tile));
-  for (int i = 0; i < ground_tiles; ++i)
-    for (int k = 0; k < ground_tiles; ++k) {
-      const double x0 = i * tile, x1 = std::min(size, x0 + tile), z0 = k * tile, z1 = std::min(size, z0 + tile);
+  for (int i = 0; i < ground_tiles(blocks_x); ++i)
+    for (int k = 0; k < ground_tiles(blocks_z); ++k) {
+      const double x0 = i * tile, x1 = std::min(size_x, x0 + tile), z0 = k * tile, z1 = std::min(size_z, z0 + tile);
       b.quad({{x0, 0, z0}, {x1, 0, z0}, {x1, 0, z1}, {x0, 0, z1}}, Vec3::UnitY(), kFloor, ground_group);
     }
-  const double sky = 4.0 * size;
+  const double size = std::max(size_x, size_z), sky = 4.0 * size;
   b.quad({{-size, sky, -size}, {2 * size, sky, -size}, {2 * size, sky, 2 * size}, {-size, sky, 2 * size}},
          -Vec3::UnitY(), kLight, sky_group);
   int buildings = 0;
-  for (int bi = 0; bi < blocks; ++bi)
-    for (int bk = 0; bk < blocks; ++bk) {
+  for (int bi = 0; bi < blocks_x; ++bi)
+    for (int bk = 0; bk < blocks_z; ++bk) {
       // Four buildings per block in its quarters, each inset from the quarter's edges.
       for (int q = 0; q < 4; ++q) {
-        if (static_cast<int>(s.faces.size()) >= n) break;
         const double qx = street + bi * pitch + (q % 2) * block / 2, qz = street + bk * pitch + (q / 2) * block / 2;
         const double w = bay * (1 + static_cast<int>(rng.below(3))), d = bay * (1 + static_cast<int>(rng.below(3)));
         const double x0 = qx + rng.uniform(0.5, block / 2 - w - 0.5), z0 = qz + rng.uniform(0.5, block / 2 - d - 0.5);
@@ -231,7 +238,7 @@ GeneratedScene city(int n, Rng& rng) {
         b.quad({{x0, h, z0}, {x1, h, z0}, {x1, h, z1}, {x0, h, z1}}, Vec3::UnitY(), kWood, g);
       }
     }
-  s.room_size = Vec3(size, sky, size);
+  s.room_size = Vec3(size_x, sky, size_z);
   return s;
 }
 

@@ -5,8 +5,8 @@
 //  * pillars: a closed hall whose floor and ceiling tiles are pierced by a grid of square pillars
 //    from floor to ceiling, every pillar face tiled, lights in the ceiling: every shaft between two
 //    surfaces crosses many occluders, as in halls, car parks and warehouses;
-//  * city: blocks of box buildings (walls tiled by storey, flat roofs) on a tiled ground under an
-//    emitting sky quad, open at the sides like real city meshes.
+//  * city: blocks of four box buildings each (walls tiled by storey, flat roofs) on a tiled ground
+//    under an emitting sky quad, open at the sides like real city meshes.
 //
 // Layout: the floor is a grid of 2.5 m cells; floor and ceiling are tiled with 1.25 m quads, the
 // walls with 1.25 x 1.5 m quads (3 m high), all facing into the room; every other cell's first
@@ -53,12 +53,17 @@ struct GeneratedScene {
   std::vector<Material> materials;
   std::vector<std::string> groups;
   std::vector<Face> faces;
-  int cells_x = 0, cells_z = 0;   ///< floor cells (2.5 m each)
+  int cells_x = 0, cells_z = 0;   ///< the grid: an office's 2.5 m floor cells, a hall's tiles, a city's blocks
   Vec3 room_size = Vec3::Zero();  ///< the room is [0, x] x [0, y] x [0, z] (metres)
 };
 
-/// The polygon count of generate_scene() lies in [polygons - kGeneratedPolygonSlack, polygons].
+/// An office's polygon count lies in [polygons - kGeneratedPolygonSlack, polygons]. A pillar hall
+/// and a city are whole grids (every pillar and every block complete, so that the sizes of a layout
+/// are alike): a grid sized for the request, within kGeneratedGridSlack of it (a city's buildings
+/// have random storeys and footprints, 37 +- 22 faces each: at 1k polygons one standard deviation
+/// of the count is ~10%, on top of the grid's step).
 inline constexpr int kGeneratedPolygonSlack = 5;
+inline constexpr double kGeneratedGridSlack = 0.4;
 
 /// Generates the room. hrad::Error naming --polygons when options.polygons < kMinGeneratedPolygons
 /// or > 10,000,000.
