@@ -7,8 +7,8 @@
 //            stacks of boxes, each turned at random), between N - 5 and N input polygons;
 //   pillars  a closed 4 m hall with a grid of floor-to-ceiling pillars (one per 3 x 3 m), every
 //            surface tiled, lights on a checkerboard of ceiling tiles: heavily occluded, about N;
-//   city     blocks of box buildings (walls tiled per storey and 5 m bay) on a tiled ground under
-//            an emitting sky quad, open at the sides, about N;
+//   city     blocks of four box buildings each (walls tiled per storey and 5 m bay) on a tiled
+//            ground under an emitting sky quad, open at the sides; every block built, about N;
 //   urban    blocks of buildings on a ground, open and not watertight like city meshes
 //            (lib/hrad/experiments/urban_generator.h), for view factors at scale, about N facets.
 // The material library is written beside FILE.obj (same name, .mtl); both atomically.

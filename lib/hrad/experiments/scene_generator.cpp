@@ -188,7 +188,7 @@ GeneratedScene city(int n, Rng& rng) {
   constexpr double block = 40.0, street = 12.0, tile = 10.0, storey = 3.5, bay = 5.0;
   constexpr double pitch = block + street;
   auto ground_tiles = [&](int blocks) { return static_cast<int>(std::ceil((blocks * pitch + street) / tile)); };
-  // A building has 2 (w + d) / bay walls a storey (w, d: 1-3 bays, 8 on average) on 4.5 storeys on
+  // A building has 2 (w + d) / bay walls a storey (w, d: 1-3 bays each; 8 walls on average) on 4.5 storeys on
   // average, and a roof: 37 faces; a block, four.
   auto expected = [&](int bx, int bz) { return 148.0 * bx * bz + ground_tiles(bx) * ground_tiles(bz) + 1.0; };
   int blocks_x = 1, blocks_z = 1;
