@@ -26,8 +26,8 @@ TEST(SceneGenerator, PolygonCountIsWithinTheStatedSlackOfTheRequest) {
   }
 }
 
-// A scale family's sizes must be alike: a city whose last blocks stood empty because the count ran
-// out would be a lighter scene per polygon at small sizes (half of a 1k city's blocks were bare).
+// A scale family's sizes must be alike: a city whose last blocks stood empty once the count ran out
+// would be a lighter scene per polygon at small sizes (at 1k polygons, half of its blocks).
 TEST(SceneGenerator, GridLayoutsAreWholeGridsNearTheRequest) {
   for (const int n : {1000, 4000, 16000})
     for (const std::uint64_t seed : {1, 2, 3}) {

@@ -182,8 +182,8 @@ GeneratedScene pillar_hall(int n) {
 // City blocks: a ground of 10 m tiles, buildings of random footprint and storeys (walls tiled by
 // storey and bay, flat roofs) on a grid of 40 m blocks separated by streets, and an emitting sky
 // quad high above, facing down. Open: light leaves at the sides, as from real city meshes. Every
-// block holds its four buildings, so that cities of every size are alike (a scale family): the grid
-// is the one whose expected polygon count is nearest n.
+// block holds its four buildings, so that cities of every size are alike (a scale family): the grid,
+// square or one block longer, is the one whose expected polygon count is nearest n.
 GeneratedScene city(int n, Rng& rng) {
   constexpr double block = 40.0, street = 12.0, tile = 10.0, storey = 3.5, bay = 5.0;
   constexpr double pitch = block + street;
