@@ -1,4 +1,4 @@
-// hrad scene generate --polygons N [--kind office|pillars|city|urban] [--seed S] --out FILE.obj
+// hrad scene generate --polygons N [--kind office|pillars|shelves|city|urban] [--seed S] --out FILE.obj
 //
 // Writes a scale scene for benchmarks (lib/hrad/experiments/scene_generator.h), the same for the
 // same N, kind and seed:
@@ -7,6 +7,8 @@
 //            stacks of boxes, each turned at random), between N - 5 and N input polygons;
 //   pillars  a closed 4 m hall with a grid of floor-to-ceiling pillars (one per 3 x 3 m), every
 //            surface tiled, lights on a checkerboard of ceiling tiles: heavily occluded, about N;
+//   shelves  a closed 6 m warehouse with rows of shelving racks (uprights and four shelves, closed
+//            boxes) between 3 m aisles, lights on every other ceiling tile: heavily occluded, about N;
 //   city     blocks of four box buildings each (walls tiled per storey and 5 m bay) on a tiled
 //            ground under an emitting sky quad, open at the sides; every block built, about N;
 //   urban    blocks of buildings on a ground, open and not watertight like city meshes
@@ -14,7 +16,7 @@
 // The material library is written beside FILE.obj (same name, .mtl); both atomically.
 //
 //   --polygons N   input polygons wanted (64 .. 10,000,000)
-//   --kind K       office (default), pillars, city or urban
+//   --kind K       office (default), pillars, shelves, city or urban
 //   --seed S       placement seed (default 1)
 //   --out FILE     the OBJ file to write
 #include <charconv>
@@ -36,7 +38,8 @@ void add_scene_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("scene", "Scene utilities: generate scale scenes for benchmarks");
   cmd->require_subcommand(1);
   auto* gen = cmd->add_subcommand(
-      "generate", "Write a scale scene (office, pillar hall or city) with about N input polygons (OBJ + MTL)");
+      "generate",
+      "Write a scale scene (office, pillar hall, warehouse or city) with about N input polygons (OBJ + MTL)");
   struct Args {
     int polygons = 0;
     std::string seed = "1";
@@ -46,8 +49,8 @@ void add_scene_command(CLI::App& app) {
   gen->add_option("--polygons", args->polygons, "Input polygons wanted (64 .. 10000000)")->required();
   gen->add_option("--seed", args->seed, "Placement seed (default 1)");
   gen->add_option("--kind", args->kind,
-                  "office (default) | pillars (closed rooms) | city (blocks under an emitting sky) | urban (buildings "
-                  "on a ground, for view factors)");
+                  "office (default) | pillars (closed rooms) | shelves (a closed warehouse) | city (blocks under an "
+                  "emitting sky) | urban (buildings on a ground, for view factors)");
   gen->add_option("--out", args->out, "OBJ file to write (the .mtl goes beside it)")->required();
   gen->callback([args] {
     // Parsed here, not by CLI11 (which accepted 99999999999999999999): a whole number that fits 64 bits.

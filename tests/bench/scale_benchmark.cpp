@@ -1,9 +1,9 @@
 // Scale: hierarchical radiosity on generated scenes (hrad scene generate) of increasing size:
 // offices (boxes on a floor), pillar halls (a grid of floor-to-ceiling pillars: many occluders in
-// every shaft) and city blocks; clustered (Smits, Arvo & Greenberg 1994) against plain HSA (every
-// pair of input polygons linked first), and one thread against two on a refine-dominated hall.
-// The work done (work_counters.h) as counters, so that its growth with the polygons can be fitted
-// beside the time; one iteration each (a 16k solve takes minutes).
+// every shaft), warehouses (rows of shelving racks) and city blocks; clustered (Smits, Arvo & Greenberg 1994) against
+// plain HSA (every pair of input polygons linked first), and one thread against two on a refine-dominated hall. The
+// work done (work_counters.h) as counters, so that its growth with the polygons can be fitted beside the time; one
+// iteration each (a 16k solve takes minutes).
 //   build/bin/scale_benchmark --benchmark_counters_tabular=true
 //   build/bin/scale_benchmark --benchmark_filter='Pillars/(1000|4000|16000)/'
 #include <benchmark/benchmark.h>
@@ -52,6 +52,7 @@ using hrad::Clustering;
 using hrad::SceneLayout;
 void BM_Office(benchmark::State& state) { run(state, SceneLayout::kOffice, Clustering::kOn, 0); }
 void BM_Pillars(benchmark::State& state) { run(state, SceneLayout::kPillars, Clustering::kOn, 0); }
+void BM_Shelves(benchmark::State& state) { run(state, SceneLayout::kShelves, Clustering::kOn, 0); }
 void BM_City(benchmark::State& state) { run(state, SceneLayout::kCity, Clustering::kOn, 0); }
 void BM_OfficeUnclustered(benchmark::State& state) { run(state, SceneLayout::kOffice, Clustering::kOff, 0); }
 void BM_PillarsOneThread(benchmark::State& state) { run(state, SceneLayout::kPillars, Clustering::kOn, 1); }
@@ -68,6 +69,7 @@ BENCHMARK(BM_Office)
     ->Unit(benchmark::kSecond)
     ->UseRealTime();
 BENCHMARK(BM_Pillars)->Arg(1000)->Arg(4000)->Arg(16000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_Shelves)->Arg(1000)->Arg(4000)->Arg(16000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 BENCHMARK(BM_City)->Arg(1000)->Arg(4000)->Arg(16000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 BENCHMARK(BM_OfficeUnclustered)->Arg(250)->Arg(1000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 BENCHMARK(BM_PillarsOneThread)->Arg(4000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();

@@ -179,6 +179,78 @@ GeneratedScene pillar_hall(int n) {
   return s;
 }
 
+// A warehouse: a closed hall 6 m high whose floor, ceiling and walls are tiled in 2 m tiles, with
+// rows of shelving racks along x separated by 3 m aisles. A rack unit is two uprights and four
+// shelves, each a closed box (the office's rule: 1 cm above the floor, >= 5 mm between parts), so the
+// scene stays closed; lights on every other ceiling tile in both directions. Every row holds the same
+// number of units: a whole grid, the one whose polygon count is nearest n.
+GeneratedScene warehouse(int n) {
+  constexpr double tile = 2.0, height = 6.0, storey = 2.0, aisle = 3.0, depth = 1.0, rack_height = 4.5;
+  constexpr double upright = 0.05, board = 0.04, gap = 0.005, unit = 2.4, margin = 2.0;
+  constexpr int storeys = 3, faces_per_unit = 36;  // 6 boxes
+  const double row_pitch = depth + aisle;
+  auto tiles_along = [&](double length) { return static_cast<int>(std::ceil(length / tile - 1e-9)); };
+  // Units per row about 5/3 of the rows, so that the hall is about square.
+  auto units_per_row = [](int rows) { return std::max(1, static_cast<int>(std::lround(rows * 5.0 / 3.0))); };
+  auto hall = [&](int rows) {
+    return Vec3(tiles_along(2.0 * margin + units_per_row(rows) * (unit + gap)) * tile, height,
+                tiles_along(2.0 * margin + rows * row_pitch - aisle) * tile);
+  };
+  auto count = [&](int rows) {
+    const Vec3 size = hall(rows);
+    const int tx = tiles_along(size.x()), tz = tiles_along(size.z());
+    return faces_per_unit * rows * units_per_row(rows) + 2 * tx * tz + 2 * storeys * (tx + tz);
+  };
+  int rows = 1;
+  while (std::abs(count(rows + 1) - n) < std::abs(count(rows) - n)) ++rows;
+  GeneratedScene s;
+  s.materials = generated_materials();
+  Builder b(s);
+  const Vec3 size = hall(rows);
+  const int tx = tiles_along(size.x()), tz = tiles_along(size.z());
+  s.cells_x = tx;
+  s.cells_z = tz;
+  s.room_size = size;
+  const int floor_group = b.group("floor"), ceiling_group = b.group("ceiling"), wall_group = b.group("walls"),
+            light_group = b.group("lights");
+  for (int i = 0; i < tx; ++i)
+    for (int k = 0; k < tz; ++k) {
+      const double x0 = i * tile, x1 = x0 + tile, z0 = k * tile, z1 = z0 + tile;
+      b.quad({{x0, 0, z0}, {x1, 0, z0}, {x1, 0, z1}, {x0, 0, z1}}, Vec3::UnitY(), kFloor, floor_group);
+      const bool light = i % 2 == 0 && k % 2 == 0;
+      b.quad({{x0, height, z0}, {x1, height, z0}, {x1, height, z1}, {x0, height, z1}}, -Vec3::UnitY(),
+             light ? kLight : kCeiling, light ? light_group : ceiling_group);
+    }
+  for (int y = 0; y < storeys; ++y) {
+    const double y0 = y * storey, y1 = y0 + storey;
+    for (int i = 0; i < tx; ++i) {
+      const double a0 = i * tile, a1 = a0 + tile;
+      b.quad({{a0, y0, 0}, {a1, y0, 0}, {a1, y1, 0}, {a0, y1, 0}}, Vec3::UnitZ(), kWall, wall_group);
+      b.quad({{a0, y0, size.z()}, {a1, y0, size.z()}, {a1, y1, size.z()}, {a0, y1, size.z()}}, -Vec3::UnitZ(), kWall,
+             wall_group);
+    }
+    for (int k = 0; k < tz; ++k) {
+      const double a0 = k * tile, a1 = a0 + tile;
+      b.quad({{0, y0, a0}, {0, y0, a1}, {0, y1, a1}, {0, y1, a0}}, Vec3::UnitX(), kWall, wall_group);
+      b.quad({{size.x(), y0, a0}, {size.x(), y0, a1}, {size.x(), y1, a1}, {size.x(), y1, a0}}, -Vec3::UnitX(), kWall,
+             wall_group);
+    }
+  }
+  // A unit in its own frame (x along the row from its start, z across from the row's front).
+  std::vector<Box> parts = {{0.0, upright, kFloorGap, rack_height, 0.0, depth, kMetal},
+                            {unit - upright, unit, kFloorGap, rack_height, 0.0, depth, kMetal}};
+  for (const double y : {0.15, 1.25, 2.35, 3.45})
+    parts.push_back({upright + gap, unit - upright - gap, y, y + board, 0.0, depth, kWood});
+  const double x_start = 0.5 * (size.x() - units_per_row(rows) * (unit + gap) + gap);
+  const double z_start = 0.5 * (size.z() - (rows * row_pitch - aisle));
+  for (int r = 0; r < rows; ++r) {
+    const int g = b.group(fmt::format("rack_row_{}", r));
+    for (int u = 0; u < units_per_row(rows); ++u)
+      for (const Box& part : parts) b.box(part, x_start + u * (unit + gap), z_start + r * row_pitch, 0.0, g);
+  }
+  return s;
+}
+
 // City blocks: a ground of 10 m tiles, buildings of random footprint and storeys (walls tiled by
 // storey and bay, flat roofs) on a grid of 40 m blocks separated by streets, and an emitting sky
 // quad high above, facing down. Open: light leaves at the sides, as from real city meshes. Every
@@ -248,7 +320,8 @@ SceneLayout parse_scene_layout(std::string_view text) {
   if (text == "office") return SceneLayout::kOffice;
   if (text == "pillars") return SceneLayout::kPillars;
   if (text == "city") return SceneLayout::kCity;
-  throw Error(fmt::format("--kind must be office, pillars, city or urban, got '{}'", text));
+  if (text == "shelves") return SceneLayout::kShelves;
+  throw Error(fmt::format("--kind must be office, pillars, shelves, city or urban, got '{}'", text));
 }
 
 GeneratedScene generate_scene(const SceneGeneratorOptions& options) {
@@ -256,6 +329,7 @@ GeneratedScene generate_scene(const SceneGeneratorOptions& options) {
   if (n < kMinGeneratedPolygons || n > 10'000'000)
     throw Error(fmt::format("--polygons must be in [{}, 10000000], got {}", kMinGeneratedPolygons, n));
   if (options.layout == SceneLayout::kPillars) return pillar_hall(n);
+  if (options.layout == SceneLayout::kShelves) return warehouse(n);
   if (options.layout == SceneLayout::kCity) {
     Rng city_rng(options.seed);
     return city(n, city_rng);

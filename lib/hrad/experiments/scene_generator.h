@@ -1,10 +1,12 @@
 // Scale scenes for benchmarks, sized to about a requested number of input polygons and
-// deterministic in a seed. Three layouts:
+// deterministic in a seed. Four layouts:
 //  * office: a closed, tiled room (an open-plan office) with ceiling lights and furniture built from
 //    closed boxes (below);
 //  * pillars: a closed hall whose floor and ceiling tiles are pierced by a grid of square pillars
 //    from floor to ceiling, every pillar face tiled, lights in the ceiling: every shaft between two
-//    surfaces crosses many occluders, as in halls, car parks and warehouses;
+//    surfaces crosses many occluders, as in halls and car parks;
+//  * shelves: a closed warehouse with rows of shelving racks (uprights and shelves, closed boxes)
+//    between aisles, lights in the ceiling;
 //  * city: blocks of four box buildings each (walls tiled by storey, flat roofs) on a tiled ground
 //    under an emitting sky quad, open at the sides like real city meshes.
 //
@@ -29,7 +31,7 @@
 
 namespace hrad {
 
-enum class SceneLayout { kOffice, kPillars, kCity };
+enum class SceneLayout { kOffice, kPillars, kShelves, kCity };
 
 struct SceneGeneratorOptions {
   int polygons = 1000;     ///< requested input polygons (>= kMinGeneratedPolygons)
@@ -37,7 +39,7 @@ struct SceneGeneratorOptions {
   SceneLayout layout = SceneLayout::kOffice;
 };
 
-/// Parses "office" | "pillars" | "city"; hrad::Error naming --kind otherwise.
+/// Parses "office" | "pillars" | "shelves" | "city"; hrad::Error naming --kind otherwise.
 SceneLayout parse_scene_layout(std::string_view text);
 
 /// Fewest polygons a generated room can have (a 1 x 1 cell room's tiles and one group).
@@ -57,8 +59,8 @@ struct GeneratedScene {
   Vec3 room_size = Vec3::Zero();  ///< the room is [0, x] x [0, y] x [0, z] (metres)
 };
 
-/// An office's polygon count lies in [polygons - kGeneratedPolygonSlack, polygons]. A pillar hall
-/// and a city are whole grids (every pillar and every block complete, so that the sizes of a layout
+/// An office's polygon count lies in [polygons - kGeneratedPolygonSlack, polygons]. A pillar hall,
+/// a warehouse and a city are whole grids (every pillar, rack row and block complete, so that the sizes of a layout
 /// are alike): a grid sized for the request, within kGeneratedGridSlack of it (a city's buildings
 /// have random storeys and footprints, 37 +- 22 faces each: at 1k polygons one standard deviation
 /// of the count is ~10%, on top of the grid's step).
