@@ -31,12 +31,12 @@ TEST(SceneGenerator, PolygonCountIsWithinTheStatedSlackOfTheRequest) {
 TEST(SceneGenerator, GridLayoutsAreWholeGridsNearTheRequest) {
   for (const int n : {1000, 4000, 16000})
     for (const std::uint64_t seed : {1, 2, 3}) {
-      for (const SceneLayout layout : {SceneLayout::kPillars, SceneLayout::kShelves, SceneLayout::kCity}) {
-        const GeneratedScene g = generate_scene({n, seed, layout});
-        const double count = static_cast<double>(g.faces.size());
+      for (const SceneLayout layout : {SceneLayout::kPillars, SceneLayout::kShelves}) {
+        const double count = static_cast<double>(generate_scene({n, seed, layout}).faces.size());
         EXPECT_NEAR(count, n, kGeneratedGridSlack * n) << n << " " << seed;
       }
       const GeneratedScene city = generate_scene({n, seed, SceneLayout::kCity});
+      EXPECT_NEAR(static_cast<double>(city.faces.size()), n, kGeneratedGridSlack * n) << n << " " << seed;
       std::map<int, int> faces;  // per group
       for (const GeneratedScene::Face& f : city.faces) ++faces[f.group];
       int buildings = 0;
