@@ -18,6 +18,7 @@
 #include "hrad/geometry/polygon.h"
 #include "hrad/solvers/cluster_tree.h"
 #include "hrad/visibility/sampling.h"
+#include "hrad/visibility/solid_angle_sampler.h"
 #include "hrad/visibility/visibility.h"
 
 #include <tbb/parallel_for.h>
@@ -144,17 +145,34 @@ std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<con
   // stratified_unit_square() returns its cells in random order: ux[i] and uy[i] are a random pairing.
   detail::stratified_unit_square(n, rx, &ux);
   detail::stratified_unit_square(n, ry, &uy);
+  // Polygons closer than their size (a shelf board 5 mm from its upright, a lamp at a wall): the
+  // kernel peaks where they come close, area-uniform pairs seldom land there, and the ratio of
+  // sums then mostly weighs the far parts: biased, and to one side where the near parts see each
+  // other and the far ones are shaded (a generated warehouse lost 0.4% of its power so, at any
+  // sample count up to 1024). There each receiver point's source point follows the solid angle
+  // (Arvo 1995): weight Omega(x) cos(theta_x) <= 2 pi, the kernel's integral over the source.
+  const bool near = !separated(receiver, source, 1.0);
   double visible = 0.0, weight = 0.0;
   int visible_rays = 0, rays = 0;
   for (int i = 0; i < n; ++i) {
     const std::size_t k = static_cast<std::size_t>(i);
-    const Vec3 x = sx.point(ux[k].x(), ux[k].y()), y = sy.point(uy[k].x(), uy[k].y());
+    const Vec3 x = sx.point(ux[k].x(), ux[k].y());
+    Vec3 y;
+    double w = 0.0;
+    if (near) {
+      const detail::SolidAngleSampler towards(x, facing_source);
+      Vec3 direction;
+      if (!towards.sample(uy[k].x(), uy[k].y(), &direction, &y)) continue;
+      w = towards.solid_angle() * std::max(0.0, nx.dot(direction));
+    } else {
+      y = sy.point(uy[k].x(), uy[k].y());
+    }
     // Facing and occlusion decided exactly on the points of the patches that x and y stand for
     // (Visibility::sight()), as in visibility_from_point().
     const Sight sight = occluders != nullptr ? visibility_->sight_among(x, receiver_patch, y, source_patch, *occluders)
                                              : visibility_->sight(x, receiver_patch, y, source_patch);
     if (sight == Sight::kFacingAway) continue;
-    const double w = detail::point_pair_kernel(nx, ny, y - x);
+    if (!near) w = detail::point_pair_kernel(nx, ny, y - x);
     ++rays;
     weight += w;
     if (sight == Sight::kVisible) ++visible_rays, visible += w;
@@ -370,8 +388,7 @@ Work FormFactorEvaluator::work() const {
   w.point_factor_evaluations = point_factors_.load();
   w.form_factor_evaluations = evaluations_.load();
   w.shaft_queries = shaft_queries_.load();
-  if (visibility_ != nullptr)
-    w.segment_queries = visibility_->counters().segment_queries.load();
+  if (visibility_ != nullptr) w.segment_queries = visibility_->counters().segment_queries.load();
   return w;
 }
 
