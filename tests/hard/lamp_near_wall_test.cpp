@@ -83,7 +83,7 @@ TEST(LampNearWall, TheWallsGaussRuleMissesTheLampsNearField) {
 // receivers' points graded towards the edges of the elements floating in front of them) and with
 // --kernel analytic; substructuring's two kernels agree within 2e-4. The partly visible pairs around
 // the lamp are closer than their size and carry large factors: their visible fractions sample the
-// source by solid angle (sampled by area, the 25 cm lamp 1 mm away was 1.2e-3 off).
+// source by solid angle (sampled by area, the 25 cm lamp 1 mm away is 1.2e-3 off).
 TEST(LampNearWall, FacingTheWallBalancesPower) {
   for (const double w : {0.25, 0.08})
     for (const double gap : {1e-3, 3e-4}) {

@@ -41,7 +41,7 @@ TEST(NearPairVisibility, VisibleFractionOfAPairCloserThanItsSizeIsUnbiased) {
   // A shelf board's top (receiver) 5 mm from its upright (source), the next board 30 cm above:
   // the board sees the upright's foot, the next board hides the rest. The kernel peaks at the
   // 5 mm gap; area-uniform point pairs seldom land there and their ratio of kernel sums, weighted
-  // towards the shaded far parts, comes out low (the mean fraction was 8% below the exact one here).
+  // towards the shaded far parts, comes out low (their mean fraction is 8% below the exact one here).
   Scene s;
   s.materials.push_back(test::material(Rgb::Constant(0.5), Rgb::Zero()));
   const double gap = 0.005, depth = 0.4, shelf = 0.3;

@@ -148,7 +148,7 @@ std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<con
   // Polygons closer than their size (a shelf board 5 mm from its upright, a lamp at a wall): the
   // kernel peaks where they come close, area-uniform pairs seldom land there, and the ratio of
   // sums then mostly weighs the far parts: biased, and to one side where the near parts see each
-  // other and the far ones are shaded (a generated warehouse lost 0.4% of its power so, at any
+  // other and the far ones are shaded (a generated warehouse loses 0.4% of its power so, at any
   // sample count up to 1024). There each receiver point's source point follows the solid angle
   // (Arvo 1995): weight Omega(x) cos(theta_x) <= 2 pi, the kernel's integral over the source.
   const bool near = !separated(receiver, source, 1.0);
