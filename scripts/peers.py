@@ -192,6 +192,8 @@ SETTINGS = [
     ('splash_room', 'hrad', 'aeps total/250', 1 / 250),
     ('splash_room', 'hrad', 'linear, total/250, feps 0.03, 16 samples',
      (1 / 250, ['--basis', 'linear'] + ['--feps', '0.03', '--visibility-samples', '16'])),
+    ('splash_room', 'hrad', 'linear, total/250, feps 0.025, 28 samples',
+     (1 / 250, ['--basis', 'linear'] + ['--feps', '0.025', '--visibility-samples', '28'])),
     ('splash_room', 'hrad', 'defaults', None),
     ('splash_room', 'hrad', 'linear basis', (None, ['--basis', 'linear'])),
     ('rpk_cube', 'rpkCpp', 'link error 1e-4', ['-gr-link-error-threshold', '1e-4']),
