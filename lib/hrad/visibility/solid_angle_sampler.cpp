@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hrad/geometry/polygon.h"
+
 namespace hrad::detail {
 namespace {
 
@@ -13,8 +15,7 @@ Vec3 orthonormal(const Vec3& v, const Vec3& a) { return (v - v.dot(a) * a).norma
 
 SolidAngleSampler::SolidAngleSampler(const Vec3& x, std::span<const Vec3> polygon) : x_(x) {
   if (polygon.size() < 3) return;
-  Vec3 n = Vec3::Zero();
-  for (std::size_t i = 0; i < polygon.size(); ++i) n += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
+  const Vec3 n = newell_normal(polygon);
   if (!(n.squaredNorm() > 0.0)) return;
   normal_ = n.normalized();
   offset_ = normal_.dot(polygon[0] - x);
