@@ -14,6 +14,10 @@
 //   --feps F               hierarchical: form-factor refinement tolerance (default automatic)
 //   --bfeps B              hierarchical: B*F refinement tolerance (radiosity units; default unused)
 //   --aeps A               hierarchical: smallest element area (default automatic)
+//   --source-levels N      hierarchical (HSA push): quadtree levels below --aeps to which a source
+//                          element may still split where a receiver's kernel peaks over part of it
+//                          and its reflected radiosity may vary there: contacts, the inside of a
+//                          lamp's housing (default 0: --aeps bounds every split)
 //   --tolerance T          iterations stop when the estimated error of the answer, relative to the
 //                          largest reflected radiosity, is below T: the last change times q / (1 - q),
 //                          q the contraction per iteration estimated from successive changes
@@ -83,7 +87,7 @@ void add_solve_command(CLI::App& app) {
     std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", kernel = "contour",
                        clustering = "auto", push = "hsa", basis = "constant", report, out;
     double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
-    int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0;
+    int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0, source_levels = 0;
     bool quiet = false, balance = false;
   };
   auto args = std::make_shared<Args>();
@@ -95,6 +99,9 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--feps", args->feps, "Hierarchical: form-factor tolerance (default automatic)");
   cmd->add_option("--bfeps", args->bfeps, "Hierarchical: B*F tolerance (default unused)");
   cmd->add_option("--aeps", args->aeps, "Hierarchical: smallest element area (default automatic)");
+  cmd->add_option("--source-levels", args->source_levels,
+                  "Hierarchical: levels below --aeps a source may split to where a receiver's kernel peaks over "
+                  "part of it (contacts, lamp housings; default 0)");
   cmd->add_option(
       "--tolerance", args->tolerance,
       "Stop when the estimated relative error (last change x q/(1-q), q the contraction) is below this (default 1e-6)");
@@ -148,6 +155,7 @@ void add_solve_command(CLI::App& app) {
     o.feps = args->feps;
     o.bfeps = args->bfeps;
     o.aeps = args->aeps;
+    o.source_levels = args->source_levels;
     o.tolerance = args->tolerance;
     o.max_iterations = args->max_iterations;
     o.visibility_samples = args->visibility_samples;

@@ -24,6 +24,7 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
                   {"feps", used.feps},
                   {"bfeps", used.bfeps},
                   {"aeps", used.aeps},
+                  {"source_levels", used.source_levels},
                   {"tolerance", used.tolerance},
                   {"max_iterations", used.max_iterations},
                   {"linear_solver", std::string(to_string(used.linear_solver))},

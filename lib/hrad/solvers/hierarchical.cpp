@@ -107,9 +107,10 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   }
   const ClusterTransfer geometry(scene, h, tree.get());
   std::vector<Rgb> cluster_radiosity(tree ? tree->size() : 0, Rgb::Zero());
-  ErrorBoundOracle oracle(h, tree.get(), geometry, ctx.evaluator(),
-                          {t.feps, t.bfeps, t.aeps, options.push == Push::kHsa, options.basis == Basis::kLinear},
-                          source_weights(scene, ctx.channels()), ctx.channels(), &cluster_radiosity);
+  ErrorBoundOracle oracle(
+      h, tree.get(), geometry, ctx.evaluator(),
+      {t.feps, t.bfeps, t.aeps, options.push == Push::kHsa, options.basis == Basis::kLinear, options.source_levels},
+      source_weights(scene, ctx.channels()), ctx.channels(), &cluster_radiosity);
 
   std::vector<Candidate> work;
   if (tree) {
@@ -199,7 +200,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     max_depth = std::max(max_depth, h.node(leaf).depth);
   }
   if (ctx.channels() == 1)
-    for (std::size_t i = 0; i < h.size(); ++i) copy_gray(h.node(static_cast<NodeId>(i)).radiosity), copy_gray(h.node(static_cast<NodeId>(i)).gathered);
+    for (std::size_t i = 0; i < h.size(); ++i)
+      copy_gray(h.node(static_cast<NodeId>(i)).radiosity), copy_gray(h.node(static_cast<NodeId>(i)).gathered);
   std::size_t partial = 0, with_cluster = 0;
   for (const Link& l : links) {
     partial += l.partial ? 1 : 0;

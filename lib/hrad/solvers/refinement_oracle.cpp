@@ -273,6 +273,12 @@ ErrorBoundOracle::ErrorBoundOracle(const ElementHierarchy& hierarchy, const Clus
       pair_samples_(std::max(4, evaluator.visibility_samples())) {
   for (const Patch& patch : evaluator.scene().patches) total_area_ += patch.area;
   b_mean_ = mean_radiosity(evaluator.scene());
+  patch_emitted_.assign(evaluator.scene().patches.size(), 0.0);
+  for (std::size_t i = 0; i < patch_emitted_.size(); ++i) {
+    const Material& m = evaluator.scene().material_of(evaluator.scene().patches[i]);
+    for (int ch = 0; ch < channels_; ++ch)
+      if (b_mean_[ch] > 0.0) patch_emitted_[i] = std::max(patch_emitted_[i], std::abs(m.emission[ch]) / b_mean_[ch]);
+  }
   if (tree_ != nullptr) {
     // A cluster's weight is its brightest patch's.
     cluster_weight_.assign(tree_->size(), 1.0);
@@ -288,6 +294,24 @@ ErrorBoundOracle::ErrorBoundOracle(const ElementHierarchy& hierarchy, const Clus
 bool ErrorBoundOracle::can_split(NodeRef r) const {
   if (is_cluster(r)) return true;
   return h_.node(r).area * 0.25 >= tol_.aeps;
+}
+
+bool ErrorBoundOracle::can_split_source(NodeRef r) const {
+  if (is_cluster(r) || tol_.source_levels <= 0 || can_split(r)) return false;
+  return h_.node(r).area * 0.25 >= std::ldexp(tol_.aeps, -2 * tol_.source_levels);
+}
+
+std::pair<double, double> ErrorBoundOracle::varied(NodeRef p, NodeRef q, double err_p, double err_q) const {
+  const auto variation = [&](NodeRef r) {
+    return std::max(0.0, weight(r) - patch_emitted_[static_cast<std::size_t>(h_.node(r).patch)]);
+  };
+  const auto reflected = [&](NodeRef r) {
+    const ElementNode& e = h_.node(r);
+    double b = 0.0;
+    for (int ch = 0; ch < channels_; ++ch) b = std::max(b, std::abs(e.radiosity[ch] - e.emission[ch]));
+    return b;
+  };
+  return weigh(variation, reflected, p, q, err_p, err_q);
 }
 
 double ErrorBoundOracle::weight(NodeRef r) const {
@@ -335,16 +359,7 @@ double ErrorBoundOracle::brightest(NodeRef r) const {
 }
 
 std::pair<double, double> ErrorBoundOracle::weighted(NodeRef p, NodeRef q, double err_p, double err_q) const {
-  double wp = 0.0, wq = 0.0;
-  if (tol_.feps > 0.0) {
-    wp = weight(q) * err_p / tol_.feps;
-    wq = weight(p) * err_q / tol_.feps;
-  }
-  if (tol_.bfeps > 0.0) {
-    wp = std::max(wp, brightest(q) * err_p / tol_.bfeps);
-    wq = std::max(wq, brightest(p) * err_q / tol_.bfeps);
-  }
-  return {wp, wq};
+  return weigh([&](NodeRef r) { return weight(r); }, [&](NodeRef r) { return brightest(r); }, p, q, err_p, err_q);
 }
 
 Decision ErrorBoundOracle::split_choice(NodeRef p, NodeRef q, double e_p, double e_q) const {
@@ -480,6 +495,7 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   const double err_p = field_p + disagreement / p.area;
   const double err_q = field_q + disagreement / q.area;
   auto [e_p, e_q] = weighted(c.p, c.q, err_p, err_q);
+  Decision source_split = Decision::kLink;  // a split below aeps, if the link would stand otherwise
   if (tol_.fields) {
     // What p gathers through the link is q's radiosity weighed by the link's field over q (q's
     // factors towards p, sum_i source_q[i] m_i), which stands for the point kernel towards p. Where
@@ -490,9 +506,16 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
     // strip of q near the contact weighed too little). Only splitting q reduces it.
     const double relative_q = f_qp > 0.0 ? field_q / f_qp : 0.0;
     const double relative_p = f_pq > 0.0 ? field_p / f_pq : 0.0;
-    const auto [s_p, s_q] = weighted(c.p, c.q, f_pq * relative_q, f_qp * relative_p);
+    // With source levels, each side's radiosity is weighed by how far it can vary (a lamp's own
+    // emission is uniform: splitting it as a source reduces nothing), and a source at aeps may
+    // split on (OracleTolerances::source_levels).
+    const auto [s_p, s_q] = tol_.source_levels > 0 ? varied(c.p, c.q, f_pq * relative_q, f_qp * relative_p)
+                                                   : weighted(c.p, c.q, f_pq * relative_q, f_qp * relative_p);
     if (can_split(c.q)) e_q = std::max(e_q, s_p);
     if (can_split(c.p)) e_p = std::max(e_p, s_q);
+    if (s_p > 1.0 && can_split_source(c.q)) source_split = Decision::kSplitQ;
+    if (s_q > 1.0 && can_split_source(c.p) && (source_split == Decision::kLink || s_q > s_p))
+      source_split = Decision::kSplitP;
   }
   if (c.partial && fraction < 1.0) {
     // What giving the whole receiver the link's visible fraction errs, in units of the tolerance:
@@ -510,6 +533,7 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   }
   const bool passes = std::max(e_p, e_q) <= 1.0;
   c.decision = passes ? Decision::kLink : split_choice(c.p, c.q, e_p, e_q);
+  if (c.decision == Decision::kLink) c.decision = source_split;
   if (c.decision != Decision::kLink) return;
   if (c.partial) {
     // The linked fraction from point pairs of its own. The test above read `fraction`, and keeping
@@ -535,8 +559,8 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
                                                      std::pow(gathered / (2.0 * kGatherNoise), 2)));
     const int samples = static_cast<int>(std::clamp(wanted, std::max(1.0, scale * kLeastLinkSamples),
                                                     static_cast<double>(kMostLinkSamples * pair_samples_)));
-    fraction = evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, among, samples,
-                                          kLinkedFractionStream);
+    fraction =
+        evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, among, samples, kLinkedFractionStream);
     if (!(fraction > 0.0)) {
       // Every linked sample was blocked too: nothing to link.
       c.decision = Decision::kDrop;
@@ -656,10 +680,10 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
           if (!is_cluster(c.p) || !is_cluster(c.q))
             linked = evaluator_.sampled(surfaces_p, surfaces_q, evaluator_.visibility_samples(),
                                         detail::mix_seed(seed, 3), &seen_p, &seen_q);
-          const double sends_q = is_cluster(c.q) ? own(c.q, surfaces_q, c.p, surfaces_p, 5, &shaded_q, &seen_p)
-                                                 : linked.value * sp.area;
-          const double sends_p = is_cluster(c.p) ? own(c.p, surfaces_p, c.q, surfaces_q, 4, &shaded_p, &seen_q)
-                                                 : linked.reverse * sq.area;
+          const double sends_q =
+              is_cluster(c.q) ? own(c.q, surfaces_q, c.p, surfaces_p, 5, &shaded_q, &seen_p) : linked.value * sp.area;
+          const double sends_p =
+              is_cluster(c.p) ? own(c.p, surfaces_p, c.q, surfaces_q, 4, &shaded_p, &seen_q) : linked.reverse * sq.area;
           if (!(sends_p > 0.0) && !(sends_q > 0.0)) return;
           // An end whose test rays all missed the other end still gets what the link brings: among
           // its patches that those rays reached (some did when the other end sends anything).

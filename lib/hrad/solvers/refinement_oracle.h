@@ -5,6 +5,7 @@
 // the root cluster's self-link).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -98,6 +99,14 @@ struct OracleTolerances {
   /// error of the linear field through the receiver's corners moved to the link's mean, which the
   /// constant basis's refinement reads.
   bool linear_leaves = false;
+  /// Quadtree levels below aeps to which an element may still split as a source (with `fields`).
+  /// Where a receiver's kernel peaks over part of a source (a contact, the inside of a lamp's
+  /// housing 2 cm from its emitter), what the receiver gathers is that part's radiosity, which a
+  /// leaf at aeps averages with the rest: the inner top of RenderPark's office2 lamp housing comes
+  /// out 27% too bright at the defaults so. Such a source splits on while its area stays >=
+  /// aeps / 4^source_levels and the test below finds the receiver's error from its varying
+  /// reflected radiosity above the tolerance. 0: aeps bounds every split.
+  int source_levels = 0;
 };
 
 /// Pairs of clusters (or a cluster and an element) farther apart than this many times the sum of
@@ -155,6 +164,28 @@ class ErrorBoundOracle final : public RefinementOracle {
   /// what p gathers from q per unit radiosity of q.
   std::pair<double, double> weighted(NodeRef p, NodeRef q, double err_p, double err_q) const;
   double weight(NodeRef r) const;
+  /// err_p and err_q in units of the tolerances: with feps, times the other side's `feps_weight`;
+  /// with bfeps, times its `bfeps_radiosity`; the larger of the two.
+  template <class FepsWeight, class BfepsRadiosity>
+  std::pair<double, double> weigh(FepsWeight feps_weight, BfepsRadiosity bfeps_radiosity, NodeRef p, NodeRef q,
+                                  double err_p, double err_q) const {
+    double wp = 0.0, wq = 0.0;
+    if (tol_.feps > 0.0) {
+      wp = feps_weight(q) * err_p / tol_.feps;
+      wq = feps_weight(p) * err_q / tol_.feps;
+    }
+    if (tol_.bfeps > 0.0) {
+      wp = std::max(wp, bfeps_radiosity(q) * err_p / tol_.bfeps);
+      wq = std::max(wq, bfeps_radiosity(p) * err_q / tol_.bfeps);
+    }
+    return {wp, wq};
+  }
+  /// What the source side of a link errs by (source_levels > 0): like weighted(), with each side
+  /// weighted by how far its radiosity can vary over it: its weight less its emission (uniform over
+  /// a patch), or with bfeps its reflected radiosity B - E.
+  std::pair<double, double> varied(NodeRef p, NodeRef q, double err_p, double err_q) const;
+  /// An element at aeps that may still split as a source (OracleTolerances::source_levels).
+  bool can_split_source(NodeRef r) const;
   double brightest(NodeRef r) const;
   Decision split_choice(NodeRef p, NodeRef q, double e_p, double e_q) const;
 
@@ -164,12 +195,13 @@ class ErrorBoundOracle final : public RefinementOracle {
   const FormFactorEvaluator& evaluator_;
   OracleTolerances tol_;
   std::vector<double> patch_weight_;
+  std::vector<double> patch_emitted_;  ///< per patch: the largest E / B_mean over the channels
   std::vector<double> cluster_weight_;
   int channels_;
   const std::vector<Rgb>* cluster_radiosity_;
   int rays_per_point_;
   int pair_samples_;
-  double total_area_ = 0.0;  ///< the scene's: a link's weighted exchange over it is its share of the power
+  double total_area_ = 0.0;   ///< the scene's: a link's weighted exchange over it is its share of the power
   Rgb b_mean_ = Rgb::Zero();  ///< mean_radiosity() of the scene
   /// Per element (as numbered when last observed): its weight then; empty before any observe().
   std::vector<double> observed_;

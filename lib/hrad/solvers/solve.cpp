@@ -40,6 +40,8 @@ void validate_options(const SolveOptions& o) {
   check_non_negative("--feps", o.feps, "unused");
   check_non_negative("--bfeps", o.bfeps, "unused");
   check_non_negative("--aeps", o.aeps, "automatic");
+  if (o.source_levels < 0 || o.source_levels > kMaxSourceLevels)
+    throw Error(fmt::format("--source-levels must be in [0, {}], got {}", kMaxSourceLevels, o.source_levels));
   check_positive("--tolerance", o.tolerance);
   if (o.max_iterations < 1) throw Error(fmt::format("--max-iterations must be >= 1, got {}", o.max_iterations));
   switch (o.linear_solver) {

@@ -62,6 +62,9 @@ inline constexpr std::size_t kAutoClusteringPatches = 200;
 /// box, 16 were not and 256 gave the same answer as 64; `hrad sweep --visibility-samples K` measures it).
 inline constexpr int kDefaultVisibilitySamples = 64;
 
+/// The most quadtree levels below aeps that --source-levels allows (aeps / 4096).
+inline constexpr int kMaxSourceLevels = 6;
+
 struct SolveOptions {
   Method method = Method::kHierarchical;
   /// Full matrix and substructuring: largest element area (scene units squared); 0 = automatic:
@@ -75,6 +78,10 @@ struct SolveOptions {
   double bfeps = 0.0;
   /// Hierarchical: smallest element area (HSA 1991 Aε, scene units squared); 0 = automatic.
   double aeps = 0.0;
+  /// Hierarchical, HSA push: quadtree levels below aeps to which a source element may still split
+  /// where a receiver's kernel peaks over part of it (contacts, lamp housings;
+  /// OracleTolerances::source_levels); 0 = aeps bounds every split.
+  int source_levels = 0;
   /// Iterations stop when the estimated error of the returned radiosity, relative to the largest
   /// reflected radiosity B - E, is below this: the last change of any element's radiosity (any
   /// channel) times q / (1 - q), q the contraction per iteration estimated from successive changes
