@@ -35,6 +35,7 @@ SolveOptions base_options(Method method, const SweepOptions& sweep) {
   o.threads = sweep.threads;
   o.progress = sweep.solve_progress;
   if (sweep.visibility_samples > 0) o.visibility_samples = sweep.visibility_samples;
+  if (method == Method::kHierarchical) o.source_levels = sweep.source_levels;
   return o;
 }
 

@@ -98,6 +98,8 @@ struct SweepOptions {
   /// Visibility point pairs per partly visible pair in every run (0 = the solvers' default); the
   /// reference uses four times as many.
   int visibility_samples = 0;
+  /// The hierarchical runs' --source-levels (SolveOptions::source_levels).
+  int source_levels = 0;
   /// Judge runs against the reference solution's final gather at the samples
   /// (experiments/final_gather.h) instead of its own field.
   bool final_gather = true;
