@@ -218,6 +218,8 @@ SETTINGS = [
     ('rpk_office2', 'hrad', 'source levels 3', (None, ['--source-levels', '3'])),
     ('rpk_office2', 'hrad', 'source levels 4', (None, ['--source-levels', '4'])),
     ('rpk_office2', 'hrad', 'linear, aeps total/100', (1 / 100, ['--basis', 'linear'])),
+    ('rpk_office2', 'hrad', 'linear, total/50, feps 0.04, 4 samples',
+     (1 / 50, ['--basis', 'linear'] + ['--feps', '0.04', '--visibility-samples', '4'])),
     ('rpk_office2', 'hrad', 'linear, total/100, feps 0.04, 4 samples',
      (1 / 100, ['--basis', 'linear'] + ['--feps', '0.04', '--visibility-samples', '4'])),
     ('rpk_office2', 'hrad', 'linear, total/100, feps 0.04, 16 samples',
