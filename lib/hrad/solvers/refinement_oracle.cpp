@@ -278,7 +278,8 @@ ErrorBoundOracle::ErrorBoundOracle(const ElementHierarchy& hierarchy, const Clus
       pair_samples_(std::max(4, evaluator.visibility_samples())) {
   for (const Patch& patch : evaluator.scene().patches) total_area_ += patch.area;
   b_mean_ = mean_radiosity(evaluator.scene());
-  patch_emitted_.assign(evaluator.scene().patches.size(), 0.0);
+  // Read only by varied(), with source levels.
+  if (tol_.source_levels > 0) patch_emitted_.assign(evaluator.scene().patches.size(), 0.0);
   for (std::size_t i = 0; i < patch_emitted_.size(); ++i) {
     const Material& m = evaluator.scene().material_of(evaluator.scene().patches[i]);
     for (int ch = 0; ch < channels_; ++ch)

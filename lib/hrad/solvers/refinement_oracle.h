@@ -195,7 +195,7 @@ class ErrorBoundOracle final : public RefinementOracle {
   const FormFactorEvaluator& evaluator_;
   OracleTolerances tol_;
   std::vector<double> patch_weight_;
-  std::vector<double> patch_emitted_;  ///< per patch: the largest E / B_mean over the channels
+  std::vector<double> patch_emitted_;  ///< per patch: the largest E / B_mean over the channels (source levels only)
   std::vector<double> cluster_weight_;
   int channels_;
   const std::vector<Rgb>* cluster_radiosity_;
