@@ -18,6 +18,7 @@
 #include "hrad/solvers/cluster_transfer.h"
 #include "hrad/solvers/cluster_tree.h"
 #include "hrad/solvers/hierarchical.h"
+#include "hrad/solvers/refinement_oracle.h"
 #include "hrad/solvers/solve.h"
 #include "hrad/solvers/solver_context.h"
 #include "solver_test_scenes.h"
@@ -250,6 +251,55 @@ TEST(ClusterTransfer, SampledFactorIsUnbiasedWithinItsStandardErrorAndReciprocal
     EXPECT_GT(e.error, 0.0);
     EXPECT_LT(std::abs(e.value - exact.from_to), 4.0 * e.error) << dist;
     EXPECT_NEAR(e.value * a.area(), e.reverse * b.area(), 1e-15 * e.value * a.area()) << dist;
+  }
+}
+
+// A link between a cluster and an element carries one exchange both ways (refinement_oracle.cpp):
+// A_cluster F(cluster -> element) = A_element F(element -> cluster) to rounding, not two estimates
+// that agree only within their sampling errors; and that exchange is the cluster's patches' exact
+// factors to the element (within 1% here: tiles of a 4 x 4 grid under a square 10 above it).
+TEST(ClusterTransfer, AClusterAndAnElementExchangeOneFactorBothWays) {
+  Scene s;
+  s.materials = {gray(0.5, 1.0)};
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 4; ++k) {
+      const double x0 = 0.25 * i, z0 = 0.25 * k;
+      add_polygon(s, {{x0, 0, z0}, {x0 + 0.25, 0, z0}, {x0 + 0.25, 0, z0 + 0.25}, {x0, 0, z0 + 0.25}}, Vec3::UnitY(),
+                  0);
+    }
+  add_polygon(s, {{0, 10, 0}, {1, 10, 0}, {1, 10, 1}, {0, 10, 1}}, -Vec3::UnitY(), 0);
+  const int square = 16;
+  const ElementHierarchy h(s);
+  const ClusterTree tree(s);
+  int tiles = -1;  // the largest cluster of tiles only
+  for (int c = 0; c < static_cast<int>(tree.size()); ++c) {
+    const std::span<const int> patches = tree.patches(c);
+    if (std::find(patches.begin(), patches.end(), square) == patches.end() &&
+        (tiles < 0 || patches.size() > tree.patches(tiles).size()))
+      tiles = c;
+  }
+  ASSERT_GE(tiles, 0) << "no cluster of tiles";
+  ASSERT_GE(tree.patches(tiles).size(), 4u);
+  const ClusterTransfer geometry(s, h, &tree);
+  SolverContext ctx(s, SolveOptions{}, Method::kHierarchical);
+  std::vector<Rgb> radiosity(tree.size(), Rgb::Zero());
+  const ErrorBoundOracle oracle(h, &tree, geometry, ctx.evaluator(), {0.05, 0.0, 1e-6},
+                                std::vector<double>(s.patches.size(), 1.0), 1, &radiosity);
+  double exact = 0.0, area = 0.0;  // sum over the cluster's tiles of A_tile F(tile -> square), A_tile
+  for (const int t : tree.patches(tiles)) {
+    const Patch& tile = s.patches[static_cast<std::size_t>(t)];
+    exact += tile.area * polygon_to_polygon(tile.vertices, s.patches[square].vertices).from_to;
+    area += tile.area;
+  }
+  for (const bool cluster_first : {true, false}) {
+    Candidate c =
+        cluster_first ? Candidate{cluster_ref(tiles), h.root(square)} : Candidate{h.root(square), cluster_ref(tiles)};
+    oracle.decide(c);
+    ASSERT_EQ(c.decision, Decision::kLink) << cluster_first;
+    const double a_p = cluster_first ? area : s.patches[square].area,
+                 a_q = cluster_first ? s.patches[square].area : area;
+    EXPECT_NEAR(c.f_pq * a_p, c.f_qp * a_q, 1e-12 * c.f_qp * a_q) << cluster_first;
+    EXPECT_NEAR(c.f_pq * a_p / exact, 1.0, 0.01) << cluster_first;
   }
 }
 
