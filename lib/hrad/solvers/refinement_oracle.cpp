@@ -696,21 +696,27 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
           // 4,400-polygon pillar hall, -10% on the 16.5k one, with the same error per polygon against
           // a 512-sample solve of the 1k hall (hrad solve S.obj --threads 1).
           double sends_q = 0.0, sends_p = 0.0;
-          if (is_cluster(c.q)) sends_q = own(c.q, surfaces_q, c.p, surfaces_p, 5, &shaded_q, &seen_p);
-          if (is_cluster(c.p)) sends_p = own(c.p, surfaces_p, c.q, surfaces_q, 4, &shaded_p, &seen_q);
+          const bool both = is_cluster(c.p) && is_cluster(c.q);
+          if (is_cluster(c.q)) sends_q = own(c.q, surfaces_q, c.p, surfaces_p, 5, &shaded_q, both ? &seen_p : nullptr);
+          if (is_cluster(c.p)) sends_p = own(c.p, surfaces_p, c.q, surfaces_q, 4, &shaded_p, both ? &seen_q : nullptr);
           if (!is_cluster(c.p)) sends_p = sends_q;
           if (!is_cluster(c.q)) sends_q = sends_p;
           if (!(sends_p > 0.0) && !(sends_q > 0.0)) return;
-          // An end whose test rays all missed the other end still gets what the link brings: among
-          // its patches that those rays reached (some did when the other end sends anything).
+          // Between two clusters, an end whose test rays all missed the other end still gets what
+          // the link brings: among its patches that the other end's own rays reached (some did when
+          // that end sends anything). Opposite an element, the cluster end's own rays found the
+          // exchange, and it shares by them (hsa_links.cpp reads what each patch saw only where its
+          // own rays found nothing).
           auto reached = [&](NodeRef end, NodeRef other, std::vector<int>& seen, ShadedPatches* s) {
-            if (!is_cluster(end) || std::isfinite(geometry_.largest_share(end, other, s))) return;
+            if (std::isfinite(geometry_.largest_share(end, other, s))) return;
             std::sort(seen.begin(), seen.end());
             for (ShadedPatch& patch : *s)
               patch.visible = std::binary_search(seen.begin(), seen.end(), patch.patch) ? 1.0f : 0.0f;
           };
-          reached(c.p, c.q, seen_p, &shaded_p);
-          reached(c.q, c.p, seen_q, &shaded_q);
+          if (both) {
+            reached(c.p, c.q, seen_p, &shaded_p);
+            reached(c.q, c.p, seen_q, &shaded_q);
+          }
           c.decision = Decision::kLink;
           c.f_pq = sends_q / sp.area;  // F(p -> q) as carried
           c.f_qp = sends_p / sq.area;
