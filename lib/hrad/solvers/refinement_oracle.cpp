@@ -37,6 +37,16 @@ constexpr int kFacingRays = 4;
 // error per polygon against a 512-sample solve (hall 0.423 / 0.425%, warehouse 0.506 / 0.507%); a
 // sixteenth (the kFacingRays floor) gains nothing more.
 constexpr int kClusterTestFraction = 8;
+// Rays from each of a partly visible pair's points for its shape and error test, at every
+// --visibility-samples: the mesh follows the tolerances, and more samples only lower the noise of
+// what the links carry. A point's doubt (its visible fraction's sampling error, added to the
+// link's error) is what keeps a partly visible link's factor small where its nine points do not
+// resolve the shadow; with more rays a point doubts less and such links come out coarser: one ray
+// a point per 64 samples left the generated 1k city (hrad scene generate --kind city) with 1198
+// elements at 128 samples against 1387 at 64, and its error per polygon against an unclustered
+// 1024-sample solve went up from 0.52% to 0.72-0.90% over sample streams; with one ray a point,
+// 0.40% at 128 and 0.25% at 256.
+constexpr int kPointRays = 1;
 // The sample stream of an element link's visible fraction, independent of the test's rays.
 constexpr std::uint64_t kLinkedFractionStream = 11;
 // The sampling error of an element link's power, as a share of the scene's, that its visible
@@ -275,9 +285,7 @@ ErrorBoundOracle::ErrorBoundOracle(const ElementHierarchy& hierarchy, const Clus
       cluster_radiosity_(cluster_radiosity),
       // The pair's budget of point pairs (--visibility-samples, 64 by default) for the link's visible
       // fraction, whose noise a small face in a penumbra shows (RenderPark's cube: faces 8% off with a
-      // quarter of it), and one ray per point per 64 for the shape and the error test: on the Cornell
-      // box at aeps total/16000 four per point gave the same errors against the sweep's reference.
-      rays_per_point_(std::max(1, evaluator.visibility_samples() / 64)),
+      // quarter of it). The shape and the error test take kPointRays a point whatever the budget.
       pair_samples_(std::max(4, evaluator.visibility_samples())) {
   for (const Patch& patch : evaluator.scene().patches) total_area_ += patch.area;
   b_mean_ = mean_radiosity(evaluator.scene());
@@ -494,7 +502,7 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
     // The test reads the fraction the points' own rays give (their quadrature of the visible point
     // factors, which weighs the elements' boundaries as the quadrature does); the link's fraction
     // comes from point pairs of its own below.
-    fraction = sample(rays_per_point_, 3);
+    fraction = sample(kPointRays, 3);
     c.partial = true;
   }
   // The link carries the factor's shape over each side (push_pull.h); its error is bounded by how

@@ -199,7 +199,6 @@ class ErrorBoundOracle final : public RefinementOracle {
   std::vector<double> cluster_weight_;
   int channels_;
   const std::vector<Rgb>* cluster_radiosity_;
-  int rays_per_point_;
   int pair_samples_;
   double total_area_ = 0.0;   ///< the scene's: a link's weighted exchange over it is its share of the power
   Rgb b_mean_ = Rgb::Zero();  ///< mean_radiosity() of the scene
