@@ -15,5 +15,6 @@ void add_scene_command(CLI::App& app);
 void add_reference_command(CLI::App& app);
 void add_viewfactors_command(CLI::App& app);
 void add_probe_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
 
 }  // namespace hrad::cli

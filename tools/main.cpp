@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   hrad::cli::add_reference_command(app);
   hrad::cli::add_viewfactors_command(app);
   hrad::cli::add_probe_command(app);
+  hrad::cli::add_compare_command(app);
   try {
     // CLI11 reports an unknown first word only as "A subcommand is required": name it instead.
     const auto known_subcommand = [&app](const std::string& name) {

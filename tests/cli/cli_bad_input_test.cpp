@@ -36,6 +36,13 @@ const std::string kCornell = "notebooks_data/scenes/cornell_box.obj";
 const std::string kSquares = R"({"pairs": [{"name": "a", "from": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]],
                                             "to": [[0,0,1],[0,1,1],[1,1,1],[1,0,1]]}]})";
 
+// One face of a solve report, and the header of the ruler's face CSV (hrad compare's inputs).
+const char* const kOneFaceReport =
+    R"({"patches": [{"face": 0, "line": 3, "group": "floor", "material": "grey", "area": 1.0,
+                     "emission": [0, 0, 0], "radiosity": [0.5, 0.5, 0.5]}]})";
+const char* const kRulerHeader =
+    "face,group,area,radiosity_r,radiosity_g,radiosity_b,radiosity_r_se,radiosity_g_se,radiosity_b_se\n";
+
 const BadInput kCases[] = {
     {"no_subcommand", {}, "", "subcommand"},
     {"unknown_subcommand", {}, "frobnicate", "frobnicate"},
@@ -223,6 +230,26 @@ const BadInput kCases[] = {
      {{"p.csv", "x,y,z\n0,1,0\n"}},
      "reference " + kScene + " --points {d}/p.csv --out {d}/r.csv",
      "p.csv:1"},
+    {"compare_missing_report", {}, "compare {d}/missing.json --against {d}/r.csv", "missing.json"},
+    {"compare_not_a_report", {{"a.json", "{\"faces\": 3}"}}, "compare {d}/a.json --against {d}/a.json", "'patches'"},
+    {"compare_ruler_bad_number",
+     {{"a.json", kOneFaceReport}, {"r.csv", std::string(kRulerHeader) + "0,floor,1,0.5,0.5,oops,0,0,0\n"}},
+     "compare {d}/a.json --against {d}/r.csv",
+     "r.csv:2"},
+    {"compare_ruler_other_scene",
+     {{"a.json", kOneFaceReport},
+      {"r.csv", std::string(kRulerHeader) + "0,floor,1,0.5,0.5,0.5,0,0,0\n1,floor,1,0.5,0.5,0.5,0,0,0\n"}},
+     "compare {d}/a.json --against {d}/r.csv",
+     "not the same scene"},
+    {"compare_ruler_other_area",
+     {{"a.json", kOneFaceReport}, {"r.csv", std::string(kRulerHeader) + "0,floor,2,0.5,0.5,0.5,0,0,0\n"}},
+     "compare {d}/a.json --against {d}/r.csv",
+     "r.csv:2"},
+    {"compare_bad_by", {{"a.json", kOneFaceReport}}, "compare {d}/a.json --against {d}/a.json --by colour", "--by"},
+    {"compare_out_is_the_report",
+     {{"a.json", kOneFaceReport}},
+     "compare {d}/a.json --against {d}/a.json --out {d}/a.json",
+     "--out"},
     {"reference_missing_scene", {}, "reference {d}/missing.obj --faces --out {d}/r.csv", "missing.obj"},
     {"reference_unwritable_output",
      {},

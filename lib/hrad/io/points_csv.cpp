@@ -2,51 +2,23 @@
 
 #include <array>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <memory>
-#include <string_view>
 
 #include <fmt/format.h>
 
 #include "hrad/core/error.h"
-
-// Fast C++ CSV Parser (Debian libfccp-dev) splits, trims and matches the header; cells are parsed
-// here with std::from_chars, which rounds correctly (the parser's own float reader does not).
-// Its error types copy file names with strncpy, which GCC's inliner warns about in this file.
-#define CSV_IO_NO_THREAD
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wstringop-truncation"
-#endif
-#include <libfccp/csv.h>
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+#include "hrad/io/csv_number.h"
+#include "hrad/io/fccp_csv.h"
 
 namespace hrad {
 namespace {
 
 constexpr std::array<const char*, 6> kColumns = {"x", "y", "z", "nx", "ny", "nz"};
 constexpr const char* kHeader = "x,y,z,nx,ny,nz";
-
-double parse_cell(const std::string& path, std::size_t line, const char* column, const char* text) {
-  std::string_view cell(text);
-  if (cell.empty()) throw_at(path, line, fmt::format("column {}: empty cell", column));
-  std::string_view digits = cell;
-  if (digits.front() == '+') digits.remove_prefix(1);  // from_chars takes no '+'
-  double value = 0.0;
-  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (ec == std::errc::result_out_of_range)
-    throw_at(path, line, fmt::format("column {}: '{}' is out of the range of a double", column, cell));
-  if (ec != std::errc() || end != digits.data() + digits.size())
-    throw_at(path, line, fmt::format("column {}: '{}' is not a number", column, cell));
-  if (!std::isfinite(value)) throw_at(path, line, fmt::format("column {}: '{}' is not finite", column, cell));
-  return value;
-}
 
 }  // namespace
 
@@ -96,7 +68,7 @@ std::vector<ProbePoint> read_points_csv(const std::string& path) {
     }
     const std::size_t line = reader->get_file_line();
     double v[6];
-    for (int c = 0; c < 6; ++c) v[c] = parse_cell(path, line, kColumns[static_cast<std::size_t>(c)], cells[c]);
+    for (int c = 0; c < 6; ++c) v[c] = parse_csv_number(path, line, kColumns[static_cast<std::size_t>(c)], cells[c]);
     ProbePoint p;
     p.position = Vec3(v[0], v[1], v[2]);
     const Vec3 normal(v[3], v[4], v[5]);
