@@ -53,9 +53,13 @@ std::vector<FaceRecord> read_report_faces(const std::string& path) {
         !p.contains("radiosity"))
       throw_at(path, 0, fmt::format("patches[{}]: expected area, emission and radiosity", i));
     FaceRecord f;
-    f.line = p.value("line", std::size_t{0});
-    f.group = p.value("group", std::string());
-    f.material = p.value("material", std::string());
+    try {
+      f.line = p.value("line", std::size_t{0});
+      f.group = p.value("group", std::string());
+      f.material = p.value("material", std::string());
+    } catch (const nlohmann::json::exception&) {
+      throw_at(path, 0, fmt::format("patches[{}]: line, group or material of the wrong type", i));
+    }
     f.area = p["area"].get<double>();
     f.emission = rgb_of(path, p["emission"], "emission", i);
     f.radiosity = rgb_of(path, p["radiosity"], "radiosity", i);
