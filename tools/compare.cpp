@@ -12,6 +12,10 @@
 //   --by KEY          material (default) or group: how the breakdown groups faces (the ruler's CSV
 //                     names groups only; by material, a CSV reference takes REPORT's materials)
 //   --out C.json      the same numbers as JSON (written atomically)
+//   --faces-out F.csv one row per face (written atomically): face, line, group, material, area,
+//                     reflected_r,_g,_b (B - E), reference_r,_g,_b, reference_se_r,_g,_b, error (|d| over
+//                     the reference's |B - E|; empty where that is 0) and share (of sum A |d|^2): where a
+//                     scene errs, for a plot or a colour map
 // Bad options and files are a one-line error naming the option or file (and line), before any output.
 #include <cmath>
 #include <iostream>
@@ -21,6 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "csv_cells.h"
 #include "hrad/analysis/face_error.h"
 #include "hrad/core/error.h"
 #include "hrad/io/atomic_file.h"
@@ -39,7 +44,7 @@ void add_compare_command(CLI::App& app) {
   auto* cmd =
       app.add_subcommand("compare", "Per-face error of a solve report against another report or the ruler's face CSV");
   struct Args {
-    std::string report, against, by = "material", out;
+    std::string report, against, by = "material", out, faces_out;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("REPORT", args->report, "Solve report (JSON, hrad solve --report)")->required();
@@ -47,14 +52,14 @@ void add_compare_command(CLI::App& app) {
       ->required();
   cmd->add_option("--by", args->by, "Group the breakdown by material (default) or group");
   cmd->add_option("--out", args->out, "Write the numbers as JSON here");
+  cmd->add_option("--faces-out", args->faces_out, "Write each face's values and error as CSV here");
   cmd->callback([args] {
     if (args->by != "material" && args->by != "group")
       throw Error(fmt::format("--by must be material or group, got '{}'", args->by));
     OutputFiles outputs;
-    if (!args->out.empty()) {
-      outputs.declare("--out", args->out);
-      outputs.check_inputs({{"the report", args->report}, {"the reference", args->against}});
-    }
+    if (!args->out.empty()) outputs.declare("--out", args->out);
+    if (!args->faces_out.empty()) outputs.declare("--faces-out", args->faces_out);
+    outputs.check_inputs({{"the report", args->report}, {"the reference", args->against}});
     const std::vector<FaceRecord> faces = read_report_faces(args->report);
     const bool json_reference = is_json(args->against);
     const std::vector<FaceRecord> reference =
@@ -97,7 +102,26 @@ void add_compare_command(CLI::App& app) {
     for (const GroupError& g : s.groups)
       std::cout << fmt::format("  {:<20} {:>7} {:>12.6g} {:>9} {:>6.1f}% {:>+8.3f}%\n", g.key, g.faces, g.area,
                                percent(g.l2_part), 100.0 * g.error_share, 100.0 * g.bias);
-    if (args->out.empty()) return;
+    if (!args->faces_out.empty()) {
+      double total = 0.0;
+      for (const FaceValues& v : values) total += v.area * (v.reflected - v.reference).square().sum();
+      write_file_atomically(args->faces_out, [&](std::ostream& o) {
+        o << "face,line,group,material,area,reflected_r,reflected_g,reflected_b,reference_r,reference_g,reference_b,"
+             "reference_se_r,reference_se_g,reference_se_b,error,share\n";
+        for (std::size_t f = 0; f < values.size(); ++f) {
+          const FaceValues& v = values[f];
+          const double d2 = (v.reflected - v.reference).square().sum(), r2 = v.reference.square().sum();
+          o << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", f, faces[f].line, csv_cell(faces[f].group),
+                           csv_cell(faces[f].material), v.area, rgb_cells(v.reflected), rgb_cells(v.reference),
+                           rgb_cells(v.reference_se), r2 > 0.0 ? fmt::format("{}", std::sqrt(d2 / r2)) : "",
+                           total > 0.0 ? v.area * d2 / total : 0.0);
+        }
+      });
+    }
+    if (args->out.empty()) {
+      outputs.commit();
+      return;
+    }
     nlohmann::json j = {{"report", args->report},
                         {"reference", args->against},
                         {"faces", s.faces},

@@ -63,6 +63,7 @@
 
 #include "comma_numbers.h"
 #include "commands.h"
+#include "csv_cells.h"
 #include "hrad/core/error.h"
 #include "hrad/core/stopwatch.h"
 #include "hrad/gather/leaf_gather.h"
@@ -114,8 +115,6 @@ ProbeGrid parse_grid(const std::string& text) {
   return g;
 }
 
-std::string rgb_cells(const Rgb& c) { return fmt::format("{},{},{}", c[0], c[1], c[2]); }
-
 }  // namespace
 
 void add_probe_command(CLI::App& app) {
@@ -142,8 +141,9 @@ void add_probe_command(CLI::App& app) {
                   "links | all: gather through the solution's links or over every patch (default: links if stored)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--seed", args->seed, "Seed of the visibility samples (default 1)");
-  cmd->add_option("--emission-units", args->emission_units,
-                  "Unit of the scene's emission: lm/m2 or W/m2 (adds illuminance_lux; default: the scene's declaration)");
+  cmd->add_option(
+      "--emission-units", args->emission_units,
+      "Unit of the scene's emission: lm/m2 or W/m2 (adds illuminance_lux; default: the scene's declaration)");
   cmd->add_option("--isolux", args->isolux, "With --grid: write a false-colour isolux plot (PNG) of the grid");
   cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
   cmd->callback([args, cmd] {

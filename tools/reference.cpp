@@ -33,6 +33,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "csv_cells.h"
 #include "hrad/core/error.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/obj_reader.h"
@@ -41,16 +42,6 @@
 
 namespace hrad::cli {
 namespace {
-
-// A CSV cell: quoted when it holds a comma, a quote or a line break (RFC 4180).
-std::string csv_cell(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-
-std::string rgb_cells(const Rgb& c) { return fmt::format("{},{},{}", c[0], c[1], c[2]); }
 
 void print_summary(const std::string& what, const ReferenceSummary& s) {
   std::cout << fmt::format(

@@ -4,7 +4,9 @@
 // worked out), and against itself.
 #include <gtest/gtest.h>
 
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -67,6 +69,32 @@ TEST(CliCompare, ScaledReferenceGivesTheWorkedError) {
   EXPECT_EQ(c["groups"][0]["key"], "receiver");
   EXPECT_NEAR(c["groups"][0]["share"].get<double>(), 1.0, 1e-12);
   EXPECT_EQ(c["groups"][1]["share"].get<double>(), 0.0);
+
+  // Face by face: the receiver errs by 0.1 / 1.1 and carries all of the squared error; the black
+  // emitter reflects nothing in the reference, so it has no relative error.
+  ASSERT_EQ(run_hrad("compare " + dir.path("r.json") + " --against " + dir.path("scaled.csv") + " --faces-out " +
+                         dir.path("f.csv"),
+                     dir)
+                .exit_code,
+            0);
+  std::istringstream rows(slurp(dir.path("f.csv")));
+  std::string header, light, receiver, extra;
+  std::getline(rows, header);
+  std::getline(rows, light);
+  std::getline(rows, receiver);
+  EXPECT_FALSE(std::getline(rows, extra));
+  EXPECT_EQ(header,
+            "face,line,group,material,area,reflected_r,reflected_g,reflected_b,reference_r,reference_g,reference_b,"
+            "reference_se_r,reference_se_g,reference_se_b,error,share");
+  const std::vector<std::string> l = csv_cells(light), r = csv_cells(receiver);
+  ASSERT_EQ(l.size(), 16u);
+  ASSERT_EQ(r.size(), 16u);
+  EXPECT_EQ(l[2], "light");
+  EXPECT_EQ(l[14], "");
+  EXPECT_EQ(std::stod(l[15]), 0.0);
+  EXPECT_EQ(r[2], "receiver");
+  EXPECT_NEAR(std::stod(r[14]), 0.1 / 1.1, 1e-12);
+  EXPECT_NEAR(std::stod(r[15]), 1.0, 1e-12);
 
   // A report against itself: no error, no noise.
   const nlohmann::json self = compare(dir, "r.json");
