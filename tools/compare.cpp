@@ -103,51 +103,46 @@ void add_compare_command(CLI::App& app) {
       std::cout << fmt::format("  {:<20} {:>7} {:>12.6g} {:>9} {:>6.1f}% {:>+8.3f}%\n", g.key, g.faces, g.area,
                                percent(g.l2_part), 100.0 * g.error_share, 100.0 * g.bias);
     if (!args->faces_out.empty()) {
-      double total = 0.0;
-      for (const FaceValues& v : values) total += v.area * (v.reflected - v.reference).square().sum();
       write_file_atomically(args->faces_out, [&](std::ostream& o) {
         o << "face,line,group,material,area,reflected_r,reflected_g,reflected_b,reference_r,reference_g,reference_b,"
              "reference_se_r,reference_se_g,reference_se_b,error,share\n";
         for (std::size_t f = 0; f < values.size(); ++f) {
           const FaceValues& v = values[f];
-          const double d2 = (v.reflected - v.reference).square().sum(), r2 = v.reference.square().sum();
           o << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", f, faces[f].line, csv_cell(faces[f].group),
                            csv_cell(faces[f].material), v.area, rgb_cells(v.reflected), rgb_cells(v.reference),
-                           rgb_cells(v.reference_se), r2 > 0.0 ? fmt::format("{}", std::sqrt(d2 / r2)) : "",
-                           total > 0.0 ? v.area * d2 / total : 0.0);
+                           rgb_cells(v.reference_se),
+                           std::isfinite(s.face_error[f]) ? fmt::format("{}", s.face_error[f]) : "", s.face_share[f]);
         }
       });
     }
-    if (args->out.empty()) {
-      outputs.commit();
-      return;
+    if (!args->out.empty()) {
+      nlohmann::json j = {{"report", args->report},
+                          {"reference", args->against},
+                          {"faces", s.faces},
+                          {"relative_l2", s.relative_l2},
+                          {"reference_noise", s.reference_noise},
+                          {"noise_corrected", s.noise_corrected},
+                          {"bias", s.bias},
+                          {"largest_face",
+                           {{"face", s.largest_face},
+                            {"line", worst.line},
+                            {"group", worst.group},
+                            {"material", worst.material},
+                            {"share", s.largest_face_share},
+                            {"error", std::isfinite(s.largest_face_error) ? nlohmann::json(s.largest_face_error)
+                                                                          : nlohmann::json(nullptr)}}},
+                          {"by", args->by}};
+      nlohmann::json groups = nlohmann::json::array();
+      for (const GroupError& g : s.groups)
+        groups.push_back({{"key", g.key},
+                          {"faces", g.faces},
+                          {"area", g.area},
+                          {"l2_part", g.l2_part},
+                          {"share", g.error_share},
+                          {"bias", g.bias}});
+      j["groups"] = groups;
+      write_file_atomically(args->out, [&](std::ostream& o) { o << j.dump(2) << "\n"; });
     }
-    nlohmann::json j = {{"report", args->report},
-                        {"reference", args->against},
-                        {"faces", s.faces},
-                        {"relative_l2", s.relative_l2},
-                        {"reference_noise", s.reference_noise},
-                        {"noise_corrected", s.noise_corrected},
-                        {"bias", s.bias},
-                        {"largest_face",
-                         {{"face", s.largest_face},
-                          {"line", worst.line},
-                          {"group", worst.group},
-                          {"material", worst.material},
-                          {"share", s.largest_face_share},
-                          {"error", std::isfinite(s.largest_face_error) ? nlohmann::json(s.largest_face_error)
-                                                                        : nlohmann::json(nullptr)}}},
-                        {"by", args->by}};
-    nlohmann::json groups = nlohmann::json::array();
-    for (const GroupError& g : s.groups)
-      groups.push_back({{"key", g.key},
-                        {"faces", g.faces},
-                        {"area", g.area},
-                        {"l2_part", g.l2_part},
-                        {"share", g.error_share},
-                        {"bias", g.bias}});
-    j["groups"] = groups;
-    write_file_atomically(args->out, [&](std::ostream& o) { o << j.dump(2) << "\n"; });
     outputs.commit();
   });
 }

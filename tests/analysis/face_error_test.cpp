@@ -30,6 +30,10 @@ TEST(FaceError, TwoFacesByHand) {
   EXPECT_EQ(s.largest_face, 1);  // 0.25 > 0.06
   EXPECT_NEAR(s.largest_face_share, 0.25 / 0.31, 1e-15);
   EXPECT_NEAR(s.largest_face_error, 1.0, 1e-15);
+  ASSERT_EQ(s.face_error.size(), 2u);
+  EXPECT_NEAR(s.face_error[0], 0.1, 1e-12);  // |0.1 (1,1,1)| / |(1,1,1)|
+  EXPECT_NEAR(s.face_share[0], 0.06 / 0.31, 1e-15);
+  EXPECT_NEAR(s.face_share[1], 0.25 / 0.31, 1e-15);
   ASSERT_EQ(s.groups.size(), 2u);
   EXPECT_EQ(s.groups[0].key, "b");
   EXPECT_NEAR(s.groups[0].bias, -1.0, 1e-15);

@@ -34,13 +34,16 @@ FaceErrors face_errors(const std::vector<FaceValues>& faces) {
     s.error2 += e2;
     s.offset += v.area * d.sum();
     s.total += v.area * v.reference.sum();
+    const double r = std::sqrt(v.reference.square().sum());
+    result.face_error.push_back(r > 0.0 ? std::sqrt(d.square().sum()) / r : std::numeric_limits<double>::infinity());
+    result.face_share.push_back(e2);
     if (e2 > largest) {
       largest = e2;
       result.largest_face = static_cast<int>(f);
-      const double r = std::sqrt(v.reference.square().sum());
-      result.largest_face_error = r > 0.0 ? std::sqrt(d.square().sum()) / r : std::numeric_limits<double>::infinity();
     }
   }
+  for (double& share : result.face_share) share = error2 > 0.0 ? share / error2 : 0.0;
+  result.largest_face_error = result.face_error[static_cast<std::size_t>(result.largest_face)];
   if (!(reference2 > 0.0)) throw Error("the reference reflects no light on any face: no relative error");
   result.relative_l2 = std::sqrt(error2 / reference2);
   result.reference_noise = std::sqrt(noise2 / reference2);

@@ -50,6 +50,8 @@ struct FaceErrors {
   double largest_face_share = 0.0;  ///< its share of sum_f A_f |d_f|^2
   double largest_face_error = 0.0;  ///< its own |d| / |Bref - E| (+inf when its reference is 0)
   std::vector<GroupError> groups;   ///< by decreasing error_share
+  std::vector<double> face_error;   ///< per face: |d| / |Bref - E| (+inf when its reference is 0)
+  std::vector<double> face_share;   ///< per face: its share of sum_f A_f |d_f|^2 (0 when that sum is 0)
 };
 
 /// Scores `faces` as above. Throws hrad::Error when there are no faces or the reference reflects
