@@ -29,17 +29,11 @@ FaceErrors errors_against(const Scene& scene, const std::vector<FaceEstimate>& r
   Solution sol;
   const SolveSummary sum = solve(scene, options, &sol);
   EXPECT_EQ(sum.termination, Termination::kConverged) << sum.message;
+  const std::vector<Rgb> b = face_radiosity(scene, sol);
   std::vector<FaceValues> faces;
   for (std::size_t f = 0; f < scene.faces.size(); ++f) {
-    Rgb b = Rgb::Zero();
-    double area = 0.0;
-    for (const int p : scene.faces[f].patches) {
-      const double a = scene.patches[static_cast<std::size_t>(p)].area;
-      b += a * sol.patch_radiosity[static_cast<std::size_t>(p)];
-      area += a;
-    }
     const Rgb e = scene.materials[static_cast<std::size_t>(scene.faces[f].material)].emission;
-    faces.push_back({area, b / area - e, ruler[f].radiosity - e, ruler[f].radiosity_se, ""});
+    faces.push_back({scene.faces[f].area, b[f] - e, ruler[f].radiosity - e, ruler[f].radiosity_se, ""});
   }
   return face_errors(faces);
 }

@@ -4,6 +4,8 @@
 
 #include <Eigen/Dense>
 
+#include "hrad/core/scene.h"
+
 namespace hrad {
 
 Rgb element_field_at(const ElementField& e, const Vec3& x) {
@@ -36,6 +38,23 @@ Rgb element_field_at(const ElementField& e, const Vec3& x) {
   }
   return (1 - u) * (1 - v) * e.radiosity[0] + u * (1 - v) * e.radiosity[1] + u * v * e.radiosity[2] +
          (1 - u) * v * e.radiosity[3];
+}
+
+std::vector<Rgb> face_radiosity(const Scene& scene, const Solution& solution) {
+  std::vector<Rgb> out;
+  out.reserve(scene.faces.size());
+  for (const InputFace& face : scene.faces) {
+    Rgb sum = Rgb::Zero();
+    double area = 0.0;
+    for (const int p : face.patches) {
+      const double a = scene.patches[static_cast<std::size_t>(p)].area;
+      if (static_cast<std::size_t>(p) < solution.patch_radiosity.size())
+        sum += a * solution.patch_radiosity[static_cast<std::size_t>(p)];
+      area += a;
+    }
+    out.push_back(area > 0.0 ? Rgb(sum / area) : Rgb::Zero());
+  }
+  return out;
 }
 
 }  // namespace hrad

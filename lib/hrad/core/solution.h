@@ -42,4 +42,11 @@ struct Solution {
   std::vector<std::pair<Vec3, Vec3>> link_segments;
 };
 
+struct Scene;
+
+/// The area-weighted mean radiosity of each input face of `scene` (Scene::faces, over its patches):
+/// what the solve report lists per face and what per-face errors are scored on. A face with no
+/// solved patch or no area reads 0.
+std::vector<Rgb> face_radiosity(const Scene& scene, const Solution& solution);
+
 }  // namespace hrad

@@ -81,16 +81,9 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
   j["energy"] = {{"emitted_power", emitted}, {"radiosity_power", radiated}};
 
   json patches = json::array();
+  const std::vector<Rgb> radiosity = face_radiosity(scene, solution);
   for (std::size_t i = 0; i < scene.faces.size(); ++i) {
     const InputFace& face = scene.faces[i];
-    Rgb sum = Rgb::Zero();
-    double area = 0.0;
-    for (int p : face.patches) {
-      const double a = scene.patches[static_cast<std::size_t>(p)].area;
-      if (static_cast<std::size_t>(p) < solution.patch_radiosity.size())
-        sum += a * solution.patch_radiosity[static_cast<std::size_t>(p)];
-      area += a;
-    }
     const Material& m = scene.materials[static_cast<std::size_t>(face.material)];
     patches.push_back({{"face", i},
                        {"line", face.line},
@@ -99,7 +92,7 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
                        {"area", face.area},
                        {"emission", rgb(m.emission)},
                        {"reflectance", rgb(m.reflectance)},
-                       {"radiosity", rgb(area > 0.0 ? Rgb(sum / area) : Rgb::Zero())}});
+                       {"radiosity", rgb(radiosity[i])}});
   }
   j["patches"] = patches;
   return j;
