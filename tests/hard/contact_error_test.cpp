@@ -13,10 +13,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "hrad/analysis/face_error.h"
 #include "hrad/experiments/scene_generator.h"
 #include "hrad/reference/reference.h"
 #include "hrad/solvers/solve.h"
+#include "support/ruler_error.h"
 
 namespace hrad {
 namespace {
@@ -29,13 +29,7 @@ FaceErrors errors_against(const Scene& scene, const std::vector<FaceEstimate>& r
   Solution sol;
   const SolveSummary sum = solve(scene, options, &sol);
   EXPECT_EQ(sum.termination, Termination::kConverged) << sum.message;
-  const std::vector<Rgb> b = face_radiosity(scene, sol);
-  std::vector<FaceValues> faces;
-  for (std::size_t f = 0; f < scene.faces.size(); ++f) {
-    const Rgb e = scene.materials[static_cast<std::size_t>(scene.faces[f].material)].emission;
-    faces.push_back({scene.faces[f].area, b[f] - e, ruler[f].radiosity - e, ruler[f].radiosity_se, ""});
-  }
-  return face_errors(faces);
+  return test::errors_against_ruler(scene, sol, ruler);
 }
 
 // Guarantee: on a 432-polygon pillar hall the defaults err by more than 4% per polygon (the

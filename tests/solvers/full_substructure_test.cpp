@@ -15,6 +15,7 @@
 #include "hrad/solvers/solve.h"
 #include "hrad/solvers/substructuring.h"
 #include "solver_test_scenes.h"
+#include "support/ruler_error.h"
 #include "support/source_tree.h"
 
 namespace hrad {
@@ -300,39 +301,15 @@ TEST(FullMatrix, LinksAndCounters) {
 
 // Both methods against the independent ruler (reference_faces: Monte Carlo path tracing on its own
 // rays, no form factor shared), per input face: the area-weighted relative L2 of the face means of
-// the reflected radiosity B - E. Constant elements converge at least as O(h), so 4x the elements
-// (h / 2) must at least halve the full matrix's error. Substructuring receives on the same mesh and
-// shoots from patches: its error is the receivers' (the full matrix's on that mesh) plus the
-// shooters'; the shooters' part, sqrt(e_sub^2 - e_full^2), must at least halve with 4x the patches.
-// The ruler's own noise (its standard errors in the same norm) is asserted small beside every error
-// it judges.
-struct RulerError {
-  double error = 0.0, noise = 0.0;
-};
-
-RulerError face_error_against_ruler(const Scene& s, const Solution& sol, const std::vector<FaceEstimate>& ruler) {
-  double num = 0.0, den = 0.0, var = 0.0;
-  for (std::size_t f = 0; f < s.faces.size(); ++f) {
-    const InputFace& face = s.faces[f];
-    const Material& m = s.materials[static_cast<std::size_t>(face.material)];
-    if (m.is_emitter()) continue;
-    double area = 0.0, b = 0.0;
-    for (int p : face.patches) {
-      area += s.patches[static_cast<std::size_t>(p)].area;
-      b += s.patches[static_cast<std::size_t>(p)].area * sol.patch_radiosity[static_cast<std::size_t>(p)].mean();
-    }
-    const double r = b / area - m.emission.mean(), q = ruler[f].radiosity.mean() - m.emission.mean();
-    num += face.area * (r - q) * (r - q);
-    den += face.area * q * q;
-    var += face.area * ruler[f].radiosity_se.square().sum() / 9.0;  // se of the channels' mean (independent)
-  }
-  return {std::sqrt(num / den), std::sqrt(var / den)};
-}
-
+// the reflected radiosity B - E, as `hrad compare` scores it (support/ruler_error.h). Constant elements converge at
+// least as O(h), so 4x the elements (h / 2) must at least halve the full matrix's error. Substructuring receives on the
+// same mesh and shoots from patches: its error is the receivers' (the full matrix's on that mesh) plus the shooters';
+// the shooters' part, sqrt(e_sub^2 - e_full^2), must at least halve with 4x the patches. The ruler's own noise (its
+// standard errors in the same norm) is asserted small beside every error it judges.
 TEST(CornellBox, FullAndSubstructuringConvergeToTheRuler) {
   const Scene s = read_obj_scene(test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   ReferenceOptions ro;
-  ro.samples = 65536;
+  ro.samples = 262144;  // its noise, over the three channels, a quarter of the finest run's error or less
   std::vector<FaceEstimate> ruler;
   reference_faces(s, ro, &ruler);
   auto error_of = [&](Method m, double elements, double patches) {
@@ -343,9 +320,9 @@ TEST(CornellBox, FullAndSubstructuringConvergeToTheRuler) {
     Solution sol;
     const SolveSummary sum = solve(s, o, &sol);
     EXPECT_TRUE(sum.termination == Termination::kDirect || sum.termination == Termination::kConverged) << sum.message;
-    const RulerError e = face_error_against_ruler(s, sol, ruler);
-    EXPECT_LT(e.noise, 0.25 * e.error) << to_string(m) << ": the ruler is too noisy to judge this";
-    return e.error;
+    const FaceErrors e = test::errors_against_ruler(s, sol, ruler);
+    EXPECT_LT(e.reference_noise, 0.25 * e.relative_l2) << to_string(m) << ": the ruler is too noisy to judge this";
+    return e.relative_l2;
   };
   const double full_coarse = error_of(Method::kFull, 32, 32), full_fine = error_of(Method::kFull, 128, 32);
   EXPECT_LT(full_fine, 0.5 * full_coarse) << full_coarse << " -> " << full_fine;

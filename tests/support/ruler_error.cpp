@@ -1,0 +1,19 @@
+#include "support/ruler_error.h"
+
+#include "hrad/core/error.h"
+
+namespace hrad::test {
+
+FaceErrors errors_against_ruler(const Scene& scene, const Solution& solution, const std::vector<FaceEstimate>& ruler) {
+  if (ruler.size() != scene.faces.size()) throw Error("the ruler has an estimate per face of another scene");
+  const std::vector<Rgb> b = face_radiosity(scene, solution);
+  std::vector<FaceValues> faces;
+  faces.reserve(scene.faces.size());
+  for (std::size_t f = 0; f < scene.faces.size(); ++f) {
+    const Rgb e = scene.materials[static_cast<std::size_t>(scene.faces[f].material)].emission;
+    faces.push_back({scene.faces[f].area, b[f] - e, ruler[f].radiosity - e, ruler[f].radiosity_se, ""});
+  }
+  return face_errors(faces);
+}
+
+}  // namespace hrad::test

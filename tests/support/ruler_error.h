@@ -1,0 +1,19 @@
+// A solution's per-polygon error against the Monte Carlo ruler's face means (reference.h,
+// reference_faces), scored as `hrad compare` scores it (analysis/face_error.h): the area-weighted
+// relative L2 of each input face's reflected radiosity B - E, with the ruler's own noise in the
+// same norm. Emitters count by what they reflect.
+#pragma once
+
+#include <vector>
+
+#include "hrad/analysis/face_error.h"
+#include "hrad/core/scene.h"
+#include "hrad/core/solution.h"
+#include "hrad/reference/reference.h"
+
+namespace hrad::test {
+
+/// `ruler` holds one estimate per input face of `scene`, in order.
+FaceErrors errors_against_ruler(const Scene& scene, const Solution& solution, const std::vector<FaceEstimate>& ruler);
+
+}  // namespace hrad::test
