@@ -54,11 +54,11 @@ constexpr std::uint64_t kLinkedFractionStream = 11;
 // are 1-4). A leaf keeps each point's value, and a point whose one ray reached the other side both
 // gathered more through the link and, from the same ray, sent more back: the round trip weighed
 // E[v^2] = v where the truth is v^2, and the generated warehouse (hrad scene generate --kind shelves)
-// gained 1.5e-3 to 1.9e-3 of its emitted power. The excess is a round trip's, second order in the link's point
-// factors, so only pairs that are not slight (whose largest point factor fails the weighted test)
-// draw apart: the warehouse 9.3e-4 for 6% more rays, where drawing apart on every partly visible
-// pair gave 8.5e-4 for 23% more (and 16-29% more CPU time on the peers' rooms). Constant leaves send
-// their mean, which no point's ray moves.
+// gained 1.5e-3 to 1.9e-3 of its emitted power. The excess is a round trip's, second order in the
+// link's point factors, so only pairs that are not slight (whose largest point factor fails the
+// weighted test) draw apart: the warehouse 9.3e-4 for 6% more rays, where drawing apart on every
+// partly visible pair gave 8.5e-4 for 23% more (and 16-29% more CPU time on the peers' rooms).
+// Constant leaves send their mean, which no point's ray moves.
 constexpr std::uint64_t kSendShapeStream = 5;
 // The sampling error of an element link's power, as a share of the scene's, that its visible
 // fraction's point pairs aim for, and the most pairs it takes for it (times --visibility-samples).
