@@ -57,7 +57,8 @@ constexpr std::uint64_t kLinkedFractionStream = 11;
 // gained 1.5e-3 to 1.9e-3 of its emitted power. The excess is a round trip's, second order in the
 // link's point factors, so only pairs that are not slight (whose largest point factor fails the
 // weighted test) draw apart: the warehouse 9.3e-4 for 6% more rays, where drawing apart on every
-// partly visible pair gave 8.5e-4 for 23% more (and 16-29% more CPU time on the peers' rooms).
+// partly visible pair gave 8.5e-4 for 24% more, and linear solves of the peers' rooms took 1.16-1.29x
+// the constant ones' CPU time (1.02-1.08x with one draw, 1.08-1.27x drawing apart where not slight).
 // Constant leaves send their mean, which no point's ray moves.
 constexpr std::uint64_t kSendShapeStream = 5;
 // The sampling error of an element link's power, as a share of the scene's, that its visible
