@@ -81,6 +81,25 @@
 
 namespace hrad::cli {
 
+namespace {
+
+// What to try when a solve does not balance power, from what it used (README "Limits").
+std::string balance_advice(const SolveSummary& summary) {
+  const SolveOptions& used = summary.used;
+  if (summary.termination == Termination::kMaxIterations)
+    return "the iterations stopped at --max-iterations before converging: raise it";
+  std::string advice = summary.method == Method::kHierarchical ? "refine (--feps, --aeps)"
+                       : used.kernel == FormFactorKernel::kAnalytic || used.basis == Basis::kLinear
+                           ? "refine (--max-area)"
+                           : "refine (--max-area) or try --kernel analytic";
+  if (used.basis == Basis::kLinear)
+    advice += "; linear elements do not balance where a source is closer than an element's size: try --basis constant";
+  if (used.source_levels > 0) advice += "; --source-levels loses power beside contacts: try without it";
+  return advice;
+}
+
+}  // namespace
+
 void add_solve_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("solve", "Solve the radiosity of a scene (full, substructure or hierarchical)");
   struct Args {
@@ -206,9 +225,9 @@ void add_solve_command(CLI::App& app) {
         warnings.push_back(
             fmt::format("{}: warning: the solution does not balance power: {} of the emitted power is unaccounted for "
                         "(allowed {:.3g}: "
-                        "{} plus {} standard errors); refine (--feps, --aeps, --max-area) or try --kernel analytic",
+                        "{} plus {} standard errors); {}",
                         scene.path, fmt::format("{:.3g}", balance->relative_residual()), balance->allowed(),
-                        kPowerBalanceTolerance, kPowerBalanceStandardErrors));
+                        kPowerBalanceTolerance, kPowerBalanceStandardErrors, balance_advice(summary)));
         std::cerr << warnings.back() << "\n";
       }
     }

@@ -88,7 +88,7 @@ TEST(CliWarnings, SolutionGivenAsASceneSaysWhatItIs) {
 // Every solve prints and reports where the power went (reference/power_balance.h). The closed box
 // solved by the full matrix with the analytic kernel balances (no warning, the report's residual
 // within the allowance); the same box solved hierarchically and stopped after one iteration has absorbed only the first
-// bounces, and the lost power is a warning on stderr and in the report.
+// bounces, and the lost power is a warning on stderr and in the report that names the iteration limit.
 TEST(CliWarnings, PowerThatDoesNotBalanceIsAWarning) {
   TempDir dir;
   dir.write("box.mtl", kMtl);
@@ -105,6 +105,9 @@ TEST(CliWarnings, PowerThatDoesNotBalanceIsAWarning) {
   r = run_hrad("solve " + obj + " --quiet --max-iterations 1 --report " + dir.path("short.json"), dir);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("does not balance power"), std::string::npos) << r.err;
+  // and says why: the iterations stopped, not the mesh
+  EXPECT_NE(r.err.find("stopped at --max-iterations before converging"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("refine"), std::string::npos) << r.err;
   report = nlohmann::json::parse(slurp(dir.path("short.json")));
   EXPECT_FALSE(report["power_balance"]["balanced"].get<bool>());
   EXPECT_GT(report["power_balance"]["relative_residual"].get<double>(), 0.1);
