@@ -44,9 +44,6 @@ void front_part(std::span<const Vec3> poly, std::span<const Vec3> other, std::ve
   detail::clip_to_half_space(poly, height, out);
 }
 
-// Heights below this fraction of a patch's diameter are contact (rounding of touching vertices).
-constexpr double kContactTolerance = 1e-9;
-
 }  // namespace
 
 bool FormFactorEvaluator::separated(std::span<const Vec3> receiver, std::span<const Vec3> source, double ratio) {

@@ -104,6 +104,10 @@ struct KernelVisibility {
   int rays = 0;  ///< rays that carry weight (both points in front of each other)
 };
 
+/// Heights over a polygon's plane below this fraction of its diameter are contact (rounding of
+/// touching vertices), not floating.
+inline constexpr double kContactTolerance = 1e-9;
+
 /// Thread-safe: every method may be called from many threads; counters are per thread
 /// (work_counter.h), and each call is deterministic (sampling seeds come from the pair's geometry
 /// or the caller).

@@ -57,6 +57,8 @@ void fill_fields(SolverContext& ctx, const ElementHierarchy& h, FieldLinks& link
   const int n = static_cast<int>(leaves.size());
   const FormFactorEvaluator& evaluator = ctx.evaluator();
   const int rays = field_rays_per_point(ctx.options().visibility_samples);
+  const NearFieldRules rules(evaluator, h, leaves, leaves);
+  ctx.summary().figures["near_field_rules"] = static_cast<double>(rules.nodes());
   ProgressReporter progress("full: form factors", static_cast<std::uint64_t>(n) * static_cast<std::uint64_t>(n - 1) / 2,
                             "pairs", ctx.options().progress, ctx.options().progress_interval_seconds);
   tbb::parallel_for(tbb::blocked_range<int>(0, n, 1), [&](const tbb::blocked_range<int>& range) {
@@ -70,6 +72,7 @@ void fill_fields(SolverContext& ctx, const ElementHierarchy& h, FieldLinks& link
     }
   });
   progress.finish();
+  apply_near_field_rules(evaluator, h, rules, links);
 }
 
 }  // namespace
