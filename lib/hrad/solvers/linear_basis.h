@@ -54,6 +54,16 @@ inline int basis_functions(const SimpsonPoints& points) { return points.count ==
 /// the Bernstein form's positivity and variation diminishing).
 std::array<double, 9> bernstein_weighting(const std::array<double, 9>& f, int count);
 
+/// A triangle's quadratic through its values at the vertices and edge midpoints (PointValues order),
+/// at the centroid: -1/9 of each vertex value, 4/9 of each midpoint value.
+template <typename Values>
+double triangle_quadratic_centre(const Values& f) {
+  double c = 0.0;
+  for (int i = 0; i < 3; ++i)
+    c += -f[static_cast<std::size_t>(i)] / 9.0 + 4.0 * f[static_cast<std::size_t>(3 + i)] / 9.0;
+  return c;
+}
+
 /// Corners of an element with `vertex_count` vertices (3 or 4): the linear basis's functions.
 inline int linear_corners(int vertex_count) { return vertex_count == 4 ? 4 : 3; }
 

@@ -37,9 +37,10 @@ struct Map {
 struct Cell {
   double u0 = 0.0, w0 = 0.0, h = 1.0;
   int depth = 0;
+  double sum = 0.0;  ///< the integral of the summed factors over the cell by its own Gauss points
 };
 
-// The cell's Gauss points, and the integral of the summed factors over them.
+// The cell's Gauss points (appended to `out`), and the integral of the summed factors over them.
 double cell_points(const FormFactorEvaluator& ev, const Map& map, const Vec3& n,
                    const std::vector<std::vector<Vec3>>& sources, const Cell& c, std::vector<RulePoint>* out) {
   const detail::GaussRule g = detail::gauss_legendre(kGaussPoints);
@@ -55,7 +56,7 @@ double cell_points(const FormFactorEvaluator& ev, const Map& map, const Vec3& n,
       double f = 0.0;
       for (const std::vector<Vec3>& s : sources) f += ev.point_factor(p.x, n, s);
       sum += p.weight * f;
-      if (out != nullptr) out->push_back(p);
+      out->push_back(p);
     }
   return sum;
 }
@@ -65,23 +66,24 @@ double cell_points(const FormFactorEvaluator& ev, const Map& map, const Vec3& n,
 std::vector<RulePoint> near_field_rule(const FormFactorEvaluator& ev, std::span<const Vec3> element, const Vec3& normal,
                                        const std::vector<std::vector<Vec3>>& sources, double tolerance) {
   const Map map{element};
-  std::vector<RulePoint> rule;
-  std::vector<Cell> todo{{0.0, 0.0, 1.0, 0}};
+  std::vector<RulePoint> rule, points;
+  Cell root;
+  root.sum = cell_points(ev, map, normal, sources, root, &points);
+  std::vector<Cell> todo{root};
   while (!todo.empty()) {
     const Cell c = todo.back();
     todo.pop_back();
     const double k = 0.5 * c.h;
-    const std::array<Cell, 4> quarters{Cell{c.u0, c.w0, k, c.depth + 1}, Cell{c.u0 + k, c.w0, k, c.depth + 1},
-                                       Cell{c.u0, c.w0 + k, k, c.depth + 1}, Cell{c.u0 + k, c.w0 + k, k, c.depth + 1}};
+    std::array<Cell, 4> quarters{Cell{c.u0, c.w0, k, c.depth + 1}, Cell{c.u0 + k, c.w0, k, c.depth + 1},
+                                 Cell{c.u0, c.w0 + k, k, c.depth + 1}, Cell{c.u0 + k, c.w0 + k, k, c.depth + 1}};
+    points.clear();
     double parts = 0.0;
-    for (const Cell& q : quarters) parts += cell_points(ev, map, normal, sources, q, nullptr);
-    const bool settled =
-        c.depth > 0 && std::abs(parts - cell_points(ev, map, normal, sources, c, nullptr)) <= tolerance;
-    if (settled || c.depth + 1 >= kMaxDepth) {
-      for (const Cell& q : quarters) cell_points(ev, map, normal, sources, q, &rule);
-    } else {
+    for (Cell& q : quarters) parts += (q.sum = cell_points(ev, map, normal, sources, q, &points));
+    // The root is always cut once, so that the rule has at least four cells.
+    if ((c.depth > 0 && std::abs(parts - c.sum) <= tolerance) || c.depth + 1 >= kMaxDepth)
+      rule.insert(rule.end(), points.begin(), points.end());
+    else
       for (const Cell& q : quarters) todo.push_back(q);
-    }
   }
   return rule;
 }
@@ -107,11 +109,7 @@ void match_linear_moments(const SimpsonPoints& s, const std::array<double, 4>& t
   const int vertex_count = s.count == 9 ? 4 : 3;
   const int n = linear_corners(vertex_count);
   std::array<double, 9>& f = *values;
-  if (s.count == 7) {
-    f[6] = 0.0;
-    for (int i = 0; i < 3; ++i)
-      f[6] += -f[static_cast<std::size_t>(i)] / 9.0 + 4.0 * f[static_cast<std::size_t>(3 + i)] / 9.0;
-  }
+  if (s.count == 7) f[6] = triangle_quadratic_centre(f);
   Eigen::Matrix4d mass = Eigen::Matrix4d::Identity();
   Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
   for (int a = 0; a < n; ++a) {

@@ -248,11 +248,7 @@ double shadow_variation(const Side& side, double fraction) {
 void shape_of(const Side& side, double mean, std::array<float, 9>* receives, std::array<float, 9>* sends) {
   std::array<double, 9> g{};
   for (int i = 0; i < side.points.count; ++i) g[i] = side.factor[i] * side.visible[i];
-  if (side.points.count == 7) {
-    // The quadratic at the centroid: -1/9 of each vertex value, 4/9 of each midpoint value.
-    g[6] = 0.0;
-    for (int i = 0; i < 3; ++i) g[6] += -g[i] / 9.0 + 4.0 * g[3 + i] / 9.0;
-  }
+  if (side.points.count == 7) g[6] = triangle_quadratic_centre(g);
   double area = 0.0, g_mean = 0.0;
   for (int i = 0; i < side.points.count; ++i) {
     area += side.points.weight[i];
