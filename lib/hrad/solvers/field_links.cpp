@@ -119,8 +119,11 @@ NearFieldRules::NearFieldRules(const FormFactorEvaluator& ev, const ElementHiera
     const double exact = ev.analytic(r.polygon(), s.polygon()).from_to;
     return std::abs(mean / area - exact) > kNearFieldStray * exact;
   };
-  for (const NodeId i : receivers)
-    for (const NodeId j : sources) {
+  // The test is symmetric: where the receivers are the sources (the full matrix), each pair once.
+  const bool same = receivers.data() == sources.data() && receivers.size() == sources.size();
+  for (std::size_t x = 0; x < receivers.size(); ++x)
+    for (std::size_t y = same ? x + 1 : 0; y < sources.size(); ++y) {
+      const NodeId i = receivers[x], j = sources[y];
       const ElementNode& a = h.node(i);
       const ElementNode& b = h.node(j);
       if (i == j || a.patch == b.patch || ev.faces_away(a.polygon(), b.polygon())) continue;
