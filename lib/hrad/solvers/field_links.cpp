@@ -162,17 +162,23 @@ void apply_near_field_rules(const FormFactorEvaluator& ev, const ElementHierarch
   std::vector<std::size_t> ruled;  // receivers with a rule
   for (std::size_t i = 0; i < links.receivers().size(); ++i)
     if (rules.rule(links.receivers()[i]) != nullptr) ruled.push_back(i);
+  // A pair's class and occluders, once for both of its directions.
+  struct Shaft {
+    bool partial = false;
+    std::vector<int> occluders;
+  };
   // The moments of the factor from r to q by r's rule, its visibility by one ray a point where the
   // pair is partly visible.
-  auto by_rule = [&](NodeId r_id, NodeId q_id, std::uint64_t stream) {
+  auto by_rule = [&](NodeId r_id, NodeId q_id, std::uint64_t stream, std::unordered_map<NodeId, Shaft>& shafts) {
     const ElementNode& r = h.node(r_id);
     const ElementNode& q = h.node(q_id);
-    std::vector<int> occluders;
-    bool partial = false;
-    if (ev.effects().visibility)
-      partial = ev.classify(r.polygon(), r.patch, q.polygon(), q.patch, nullptr, &occluders) == PairClass::kPartial;
+    const auto [it, fresh] = shafts.try_emplace(q_id);
+    if (fresh && ev.effects().visibility)
+      it->second.partial = ev.classify(r.polygon(), r.patch, q.polygon(), q.patch, nullptr, &it->second.occluders) ==
+                           PairClass::kPartial;
     const Vec3& n = ev.scene().patches[static_cast<std::size_t>(r.patch)].normal;
-    return rule_moments(ev, *rules.rule(r_id), n, r.patch, q.polygon(), q.patch, &occluders, partial,
+    return rule_moments(ev, *rules.rule(r_id), n, r.patch, q.polygon(), q.patch, &it->second.occluders,
+                        it->second.partial,
                         detail::mix_seed(ev.pair_seed(r.polygon(), r.patch, q.polygon(), q.patch), stream));
   };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ruled.size(), 1),
@@ -181,11 +187,12 @@ void apply_near_field_rules(const FormFactorEvaluator& ev, const ElementHierarch
                         const std::size_t i = ruled[k];
                         const NodeId r = links.receivers()[i];
                         const SimpsonPoints points = simpson_points(h.node(r).polygon());
+                        std::unordered_map<NodeId, Shaft> shafts;
                         // What r gathers from each source it sees.
                         for (std::size_t j = 0; j < links.sources().size(); ++j) {
                           FieldEntry& e = links.entry(i, j);
                           if (e.factor == std::array<double, 9>{}) continue;  // coplanar, facing away or hidden
-                          match_linear_moments(points, by_rule(r, links.sources()[j], kGatherStream), &e.factor);
+                          match_linear_moments(points, by_rule(r, links.sources()[j], kGatherStream, shafts), &e.factor);
                         }
                         // What r sends to each receiver that sees it: weights shaped as the rule's moments, summing to
                         // 1 (a uniform radiosity still sends itself).
@@ -194,7 +201,7 @@ void apply_near_field_rules(const FormFactorEvaluator& ev, const ElementHierarch
                         for (std::size_t m = 0; m < links.receivers().size(); ++m) {
                           FieldEntry& e = links.entry(m, as_source->second);
                           if (e.weight == std::array<double, 9>{}) continue;
-                          std::array<double, 4> t = by_rule(r, links.receivers()[m], kSendStream);
+                          std::array<double, 4> t = by_rule(r, links.receivers()[m], kSendStream, shafts);
                           double sum = 0.0;
                           for (const double v : t) sum += v;
                           if (!(sum > 0.0)) continue;
