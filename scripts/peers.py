@@ -306,9 +306,11 @@ def errors_against(rows, reference, faces, what):
     for i, ((a, c, r), (fa, fc)) in enumerate(zip(rows, faces)):
         if c is not None and (abs(a - fa) > 1e-3 * fa or max(abs(x - y) for x, y in zip(c, fc)) > 1e-5 * size):
             sys.exit('%s: polygon %d is not the OBJ face %d (area %g against %g)' % (what, i, i, a, fa))
-    num = sum(a * (r - q) ** 2 for (a, c, r), (_, _, q) in zip(rows, reference))
+    # Weighted by the reference's areas: what shows of each polygon (hrad cuts what a face lying flush on
+    # it covers, lib/hrad/io/flush_faces.h; a peer reports the whole polygon).
+    num = sum(a * (r - q) ** 2 for (_, c, r), (a, _, q) in zip(rows, reference))
     den = sum(a * q * q for a, c, q in reference)
-    bias = sum(a * r for a, c, r in rows) / sum(a * q for a, c, q in reference) - 1
+    bias = sum(a * r for (_, c, r), (a, _, _) in zip(rows, reference)) / sum(a * q for a, c, q in reference) - 1
     return math.sqrt(num / den), bias
 
 

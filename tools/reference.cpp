@@ -36,7 +36,7 @@
 #include "csv_cells.h"
 #include "hrad/core/error.h"
 #include "hrad/io/atomic_file.h"
-#include "hrad/io/obj_reader.h"
+#include "hrad/io/scene_reader.h"
 #include "hrad/io/points_csv.h"
 #include "hrad/reference/reference.h"
 
@@ -82,7 +82,7 @@ void add_reference_command(CLI::App& app) {
     validate_reference_options(options);
 
     std::vector<std::string> warnings;
-    const Scene scene = read_obj_scene(args->scene, &warnings);
+    const Scene scene = read_scene(args->scene, &warnings);
     std::vector<ProbePoint> points;
     if (!args->faces) points = read_points_csv(args->points);
     for (const std::string& w : warnings) std::cerr << w << "\n";

@@ -25,11 +25,9 @@ bool in_front(const Patch& p, const Patch& q, double tol) {
   return false;
 }
 
-/// Whether two convex patches in one plane (normal `n`) overlap by more than `tol` across every
-/// separating direction: by the separating axis theorem two convex polygons are disjoint exactly
-/// when some edge's in-plane normal separates them, so overlap means no edge separates them by
-/// more than -tol (touching along an edge or at a corner is not overlap).
-bool overlap(const Patch& a, const Patch& b, const Vec3& n, double tol) {
+}  // namespace
+
+bool patches_overlap(const Patch& a, const Patch& b, const Vec3& n, double tol) {
   for (const Patch* edges : {&a, &b}) {
     const std::vector<Vec3>& v = edges->vertices;
     for (std::size_t i = 0; i < v.size(); ++i) {
@@ -51,7 +49,47 @@ bool overlap(const Patch& a, const Patch& b, const Vec3& n, double tol) {
   return true;
 }
 
-}  // namespace
+std::vector<std::pair<int, int>> flush_pairs(const Scene& scene) {
+  std::vector<std::pair<int, int>> pairs;
+  if (scene.patches.empty()) return pairs;
+  const auto [lo, hi] = scene.bounds();
+  const double size = (hi - lo).norm(), tol = 1e-7 * size;
+  // Bucketed by the plane, rounded; within a bucket, swept along the axis the normal leaves most
+  // room in, so that a floor of many tiles costs O(tiles log tiles) when nothing overlaps.
+  std::map<std::tuple<long long, long long, long long, long long>, std::vector<int>> planes;
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    const Patch& p = scene.patches[i];
+    const auto q = [](double x, double step) { return static_cast<long long>(std::llround(x / step)); };
+    planes[{q(p.normal.x(), 1e-6), q(p.normal.y(), 1e-6), q(p.normal.z(), 1e-6),
+            q(p.normal.dot(p.vertices[0]), 1e-7 * size)}]
+        .push_back(static_cast<int>(i));
+  }
+  for (auto& [key, members] : planes) {
+    if (members.size() < 2) continue;
+    int axis = 0;
+    scene.patches[static_cast<std::size_t>(members[0])].normal.cwiseAbs().minCoeff(&axis);
+    const auto extent = [&](int i) {
+      double a = INFINITY, b = -INFINITY;
+      for (const Vec3& v : scene.patches[static_cast<std::size_t>(i)].vertices)
+        a = std::min(a, v[axis]), b = std::max(b, v[axis]);
+      return std::pair{a, b};
+    };
+    std::sort(members.begin(), members.end(), [&](int a, int b) {
+      return std::pair{extent(a).first, a} < std::pair{extent(b).first, b};
+    });
+    for (std::size_t i = 0; i < members.size(); ++i) {
+      const double end = extent(members[i]).second;
+      for (std::size_t j = i + 1; j < members.size() && extent(members[j]).first < end - tol; ++j) {
+        const Patch& a = scene.patches[static_cast<std::size_t>(members[i])];
+        const Patch& b = scene.patches[static_cast<std::size_t>(members[j])];
+        if (a.face == b.face || !patches_overlap(a, b, a.normal, tol)) continue;
+        pairs.emplace_back(std::min(members[i], members[j]), std::max(members[i], members[j]));
+      }
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
 
 std::vector<std::string> scene_warnings(const Scene& scene) {
   std::vector<std::string> out;
@@ -92,36 +130,25 @@ std::vector<std::string> scene_warnings(const Scene& scene) {
 
   // Faces of different input faces lying in one plane, facing the same way and overlapping (a
   // picture or a rug modelled flush with its wall or floor): light reaching the overlap lands on
-  // both, so the scene absorbs more than it emits. Patches are bucketed by their plane, rounded.
+  // both, so the scene absorbs more than it emits. The readers cut such overlaps (flush_faces.h);
+  // a scene built otherwise may still have them.
   {
-    std::map<std::tuple<long long, long long, long long, long long>, std::vector<int>> planes;
-    const double size = (hi - lo).norm();
-    for (std::size_t i = 0; i < scene.patches.size(); ++i) {
-      const Patch& p = scene.patches[i];
-      const auto q = [](double x, double step) { return static_cast<long long>(std::llround(x / step)); };
-      planes[{q(p.normal.x(), 1e-6), q(p.normal.y(), 1e-6), q(p.normal.z(), 1e-6),
-              q(p.normal.dot(p.vertices[0]), 1e-7 * size)}]
-          .push_back(static_cast<int>(i));
-    }
     std::size_t pairs = 0;
     double area = 0.0;
     std::string first;
-    for (const auto& [key, members] : planes)
-      for (std::size_t i = 0; i < members.size(); ++i)
-        for (std::size_t j = i + 1; j < members.size(); ++j) {
-          const Patch& a = scene.patches[static_cast<std::size_t>(members[i])];
-          const Patch& b = scene.patches[static_cast<std::size_t>(members[j])];
-          if (a.face == b.face || !overlap(a, b, a.normal, 1e-7 * size)) continue;
-          if (pairs++ == 0)
-            first = fmt::format("faces at lines {} and {}", scene.faces[static_cast<std::size_t>(a.face)].line,
-                                scene.faces[static_cast<std::size_t>(b.face)].line);
-          area += std::min(a.area, b.area);
-        }
+    for (const auto& [i, j] : flush_pairs(scene)) {
+      const Patch& a = scene.patches[static_cast<std::size_t>(i)];
+      const Patch& b = scene.patches[static_cast<std::size_t>(j)];
+      if (pairs++ == 0)
+        first = fmt::format("faces at lines {} and {}", scene.faces[static_cast<std::size_t>(a.face)].line,
+                            scene.faces[static_cast<std::size_t>(b.face)].line);
+      area += std::min(a.area, b.area);
+    }
     if (pairs > 0)
       out.push_back(fmt::format(
           "{} pair{} of patches lie in one plane, facing the same way, and overlap (first: {}; up to {:.3g}% of the "
           "area): light reaching an overlap lands on both, so the scene absorbs more than it emits; lift the face "
-          "on top off its plane or cut it out of the one beneath",
+          "on top off its plane or cut it out of the one beneath (hrad::cut_flush_faces())",
           pairs, pairs == 1 ? "" : "s", first, 100.0 * area / scene.total_area()));
   }
 

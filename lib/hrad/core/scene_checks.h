@@ -14,16 +14,29 @@
 //     (a picture or a rug flush with its wall or floor): light reaching the overlap is received by
 //     both, so the solution absorbs more than the scene emits (exact visibility cannot say which
 //     is on top). Found by bucketing patches by their plane and a separating-axis test per pair.
+//     The scene readers cut them (io/flush_faces.h); a scene built otherwise may still have them.
 // The tests are exact for flat faces (a point in front of a plane, with a tolerance of 1e-9 of the
 // scene's size for points on the plane) and cost O(faces^2) at worst, stopping at the first face in front.
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hrad/core/scene.h"
 
 namespace hrad {
+
+/// Whether two convex patches in one plane (unit normal `n`) overlap by more than `tol` across every
+/// separating direction: by the separating axis theorem two convex polygons are disjoint exactly
+/// when some edge's in-plane normal separates them, so overlap means no edge separates them by
+/// more than -tol (touching along an edge or at a corner is not overlap).
+bool patches_overlap(const Patch& a, const Patch& b, const Vec3& n, double tol);
+
+/// Pairs (i, j), i < j, of patches of different faces that lie in one plane (normal and offset
+/// rounded to 1e-6 and 1e-7 of the scene's size), face the same way and overlap by more than 1e-7
+/// of the scene's size: faces lying flush on each other. Sorted.
+std::vector<std::pair<int, int>> flush_pairs(const Scene& scene);
 
 /// One line per finding, without a "warning:" prefix; empty for a sound scene.
 std::vector<std::string> scene_warnings(const Scene& scene);

@@ -14,6 +14,7 @@
 #include "hrad/core/memory.h"
 
 #include "hrad/core/error.h"
+#include "hrad/io/flush_faces.h"
 #include "hrad/io/input_file.h"
 #include "hrad/io/ply_file.h"
 #include "hrad/io/scene_directives.h"
@@ -137,9 +138,25 @@ Scene read_ply_scene(const std::string& path, std::vector<std::string>* warnings
 Scene read_scene(const std::string& path, std::vector<std::string>* warnings, const ObjReadOptions& options) {
   const std::string ext = lower_extension(path);
   const AllocationScope allocating(fmt::format("the scene read from {}", path), "read a smaller scene");
-  if (ext == ".ply") return read_ply_scene(path, warnings, options);
-  if (ext == ".gltf" || ext == ".glb") return read_gltf_scene(path, warnings, options);
-  return read_obj_scene(path, warnings, options);
+  Scene scene = ext == ".ply"                     ? read_ply_scene(path, warnings, options)
+                : ext == ".gltf" || ext == ".glb" ? read_gltf_scene(path, warnings, options)
+                                                  : read_obj_scene(path, warnings, options);
+  const double total = scene.total_area();
+  const FlushCuts cuts = cut_flush_faces(scene);
+  if (cuts.pairs > 0 && warnings != nullptr) {
+    const std::size_t top = scene.faces[static_cast<std::size_t>(cuts.first_top)].line;
+    const std::size_t beneath = scene.faces[static_cast<std::size_t>(cuts.first_beneath)].line;
+    warnings->push_back(fmt::format(
+        "{}:{}: warning: {} pair{} of faces lie flush on each other (one plane, facing the same way, overlapping; "
+        "first: line {} on line {}): the face of the smaller object (then the smaller face, then the later one) is "
+        "taken to lie on top, and what it covers is cut out of the face beneath ({:.3g}% of the area{}); lift a "
+        "face off the plane (a tenth of a millimetre will do) to say otherwise",
+        path, top, cuts.pairs, cuts.pairs == 1 ? "" : "s", top, beneath, 100.0 * cuts.covered_area / total,
+        cuts.hidden_faces > 0
+            ? fmt::format("; {} face{} covered entirely", cuts.hidden_faces, cuts.hidden_faces == 1 ? "" : "s")
+            : std::string()));
+  }
+  return scene;
 }
 
 }  // namespace hrad
