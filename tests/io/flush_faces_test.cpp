@@ -91,17 +91,19 @@ TEST(FlushFaces, OnlyTheOverlapIsCutWhereTheFaceOnTopReachesPastTheOneBeneath) {
 TEST(FlushFaces, TheSmallerObjectLiesOnTopEvenWhereItsFaceIsTheLarger) {
   test::TempDir dir;
   int v = 0;
-  // A 3 x 3 rug over four 1 x 1 tiles of a 6 x 6 tiled floor: each tile is smaller than the rug, but
-  // the floor is the larger object, so the rug lies on top and the tiles under it vanish.
+  // A 3.5 x 3 rug, declared first, over 1 x 1 tiles of a 6 x 6 tiled floor: each tile is smaller than
+  // the rug, but the floor is the larger object, so the rug lies on top: the nine tiles under it vanish
+  // and the three it half covers keep their other halves.
   std::vector<std::array<double, 4>> tiles;
   for (int i = 0; i < 6; ++i)
     for (int k = 0; k < 6; ++k) tiles.push_back({double(i), i + 1.0, double(k), k + 1.0});
-  std::string body = rectangles("rug", 0.0, {{1, 4, 1, 4}}, &v);
+  std::string body = rectangles("rug", 0.0, {{1, 4.5, 1, 4}}, &v);
   body += rectangles("floor", 0.0, tiles, &v);
   std::vector<std::string> warnings;
   const Scene s = read(dir, body, &warnings);
-  EXPECT_NEAR(area_of(s, "rug"), 9.0, 1e-15);
-  EXPECT_NEAR(area_of(s, "floor"), 36.0 - 9.0, 1e-12);
+  EXPECT_NEAR(area_of(s, "rug"), 10.5, 1e-15);
+  EXPECT_NEAR(area_of(s, "floor"), 36.0 - 10.5, 1e-12);
+  for (const int k : {1, 2, 3}) EXPECT_NEAR(s.faces[static_cast<std::size_t>(1 + 4 * 6 + k)].area, 0.5, 1e-12) << k;
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("9 faces covered entirely"), std::string::npos) << warnings[0];
   expect_sound(s);

@@ -156,9 +156,10 @@ FlushCuts cut_flush_faces(Scene& scene) {
   std::vector<Patch> patches;
   patches.reserve(scene.patches.size());
   for (std::size_t i = 0; i < scene.patches.size(); ++i) {
-    Patch& b = scene.patches[i];
+    // Copied, not moved: a patch beneath may come after the patches on top of it.
+    const Patch& b = scene.patches[i];
     if (covers[i].empty()) {
-      patches.push_back(std::move(b));
+      patches.push_back(b);
       continue;
     }
     // In b's plane: origin at its first vertex, axes e1 and e2 = n x e1 (counter-clockwise seen from
