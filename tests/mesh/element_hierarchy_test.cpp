@@ -23,6 +23,29 @@ double leaf_area_sum(const ElementHierarchy& h, int patch) {
   return sum;
 }
 
+// Two overlapping slivers in one plane that meet at a welded corner, and a quad in another plane with
+// two corners 2e-5 apart (pieces of a wall cut around furniture, as a modeller's boolean leaves them):
+// OpenMesh's add_face() would re-link around the shared corner and assert on a half-edge without a
+// successor. The mesh takes each such face with vertices of its own instead, and splits as usual.
+TEST(ElementHierarchy, SliversAtAWeldedCornerBuildAndSplit) {
+  Scene s = make_scene({{{-479.99980000000005, -800.00199999999995, -632.48327024793389},
+                         {-444.00428415577198, -800.00199999999995, -599.99789999999996},
+                         {-84.000000000000114, -800.00199999999995, -999.99900000000002}},
+                        {{352.14474474022308, -800.00199999999995, -609.60496181975634},
+                         {-84.000000016147055, -800.00199999999995, -999.9989999820591},
+                         {-389.99833390461754, -800.00199999999995, -660.0008961903859}},
+                        quad({420, -533.33280000000002, -684.99900000000002},
+                             {113.99990000000001, -533.33280000000002, -345.00200000000001},
+                             {-83.999989942896377, -533.33280000000002, -999.99896673042406},
+                             {-83.999974400085478, -533.33280000000002, -999.9989840000535})});
+  ElementHierarchy h(s);
+  for (int p = 0; p < 3; ++p) {
+    h.split(h.root(p));
+    EXPECT_NEAR(leaf_area_sum(h, p), s.patches[static_cast<std::size_t>(p)].area,
+                1e-12 * s.patches[static_cast<std::size_t>(p)].area);
+  }
+}
+
 TEST(ElementHierarchy, UniformSubdivisionAreasSumToPatchArea) {
   // An irregular convex quad and a scalene triangle: the 1-to-4 splits must still tile them.
   const Scene s =

@@ -22,6 +22,40 @@ using FaceHandle = PolyMesh::FaceHandle;
 
 PolyMesh::Point point_of(const Vec3& p) { return PolyMesh::Point(p.x(), p.y(), p.z()); }
 
+// Whether OpenMesh can add the face `loop` to `mesh`: its vertices distinct, each on the boundary
+// (or isolated), each of its edges new or a boundary half-edge, and where two consecutive old edges
+// are not yet consecutive, a free gap around their vertex for add_face() to re-link the patch
+// between them into (its own walk over the vertex's half-edges, done here first: on a
+// non-manifold neighbourhood, slivers beside a welded corner, the walk meets a half-edge without
+// a successor and OpenMesh 9 asserts instead of failing). Otherwise the face takes vertices of its own.
+bool adds_cleanly(const PolyMesh& mesh, const std::vector<VertexHandle>& loop) {
+  const std::size_t n = loop.size();
+  std::vector<HalfedgeHandle> h(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j)
+      if (loop[i] == loop[j]) return false;
+    if (!mesh.is_boundary(loop[i])) return false;
+    h[i] = mesh.find_halfedge(loop[i], loop[(i + 1) % n]);
+    if (h[i].is_valid() && !mesh.is_boundary(h[i])) return false;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const HalfedgeHandle inner_prev = h[i], inner_next = h[(i + 1) % n];
+    if (!inner_prev.is_valid() || !inner_next.is_valid() || mesh.next_halfedge_handle(inner_prev) == inner_next)
+      continue;
+    HalfedgeHandle gap = mesh.opposite_halfedge_handle(inner_next);
+    for (std::size_t steps = 0;; ++steps) {
+      const HalfedgeHandle next = mesh.next_halfedge_handle(gap);
+      if (!next.is_valid() || steps > mesh.n_halfedges()) return false;
+      gap = mesh.opposite_halfedge_handle(next);
+      if (mesh.is_boundary(gap)) break;
+    }
+    if (gap == inner_prev || !mesh.next_halfedge_handle(gap).is_valid() ||
+        !mesh.next_halfedge_handle(inner_prev).is_valid() || !mesh.prev_halfedge_handle(inner_next).is_valid())
+      return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 LeafMesh::LeafMesh(const std::vector<ElementNode>& roots, double weld_tolerance) {
@@ -70,7 +104,7 @@ LeafMesh::LeafMesh(const std::vector<ElementNode>& roots, double weld_tolerance)
     }
     std::vector<VertexHandle> vhs;
     for (int position : loop) vhs.push_back(vertex(position));
-    FaceHandle f = mesh_.add_face(vhs);
+    FaceHandle f = adds_cleanly(mesh_, vhs) ? mesh_.add_face(vhs) : FaceHandle();
     if (!f.is_valid()) {
       for (std::size_t k = 0; k < vhs.size(); ++k) vhs[k] = mesh_.add_vertex(point_of(grid.point(loop[k])));
       f = mesh_.add_face(vhs);
