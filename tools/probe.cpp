@@ -178,15 +178,17 @@ void add_probe_command(CLI::App& app) {
     if (!args->points.empty()) outputs.check_inputs({{"--points", args->points}});
     // The probe file first: its defects are the user's most likely ones, and it is cheap to read.
     const std::vector<ProbePoint> points = grid ? grid_points(*grid) : read_points_csv(args->points);
+    std::optional<SolutionLinks> stored;
+    const Solution solution = read_solution_ply(args->solution, &stored);
     std::vector<std::string> warnings;
-    const Scene scene = read_scene(args->scene, &warnings);
+    ObjReadOptions read_options;
+    read_options.cut_near_faces = solution.near_faces_cut;  // the patches the solve had
+    const Scene scene = read_scene(args->scene, &warnings, read_options);
     {
       std::vector<std::pair<std::string, std::string>> inputs;
       for (const std::string& f : scene.files) inputs.emplace_back("an input of --scene", f);
       outputs.check_inputs(inputs);
     }
-    std::optional<SolutionLinks> stored;
-    const Solution solution = read_solution_ply(args->solution, &stored);
     check_solution_patches(solution, args->solution, scene, args->scene);
     // The unit: the option's, else the scene's declaration ("#@hrad emission-units lm/m2").
     if (scene.emission_units) {

@@ -231,7 +231,9 @@ void add_render_command(CLI::App& app) {
     if (!args->quiet) options.progress = [](std::string_view line) { std::cerr << "hrad render: " << line << "\n"; };
     std::optional<Scene> scene;
     if (!args->scene.empty()) {
-      scene = read_scene(args->scene);
+      ObjReadOptions read_options;
+      read_options.cut_near_faces = solution.near_faces_cut;  // the patches the solve had
+      scene = read_scene(args->scene, nullptr, read_options);
       std::vector<std::pair<std::string, std::string>> inputs;
       for (const std::string& f : scene->files) inputs.emplace_back("an input of --scene", f);
       outputs.check_inputs(inputs);

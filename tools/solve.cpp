@@ -47,6 +47,9 @@
 //                          lib/hrad/solvers/linear_basis.h, field_links.h, leaf_links.h)
 //   --balance              balance the leaves after meshing or refinement (a restricted quadtree: at
 //                          most one level between edge neighbours, so no long T-edges in the output)
+//   --cut-near-faces       cut each face along the outlines of parallel faces facing it from at most
+//                          a tenth of their size (lib/hrad/io/near_faces.h); the faces stay, their
+//                          patches multiply. The solution PLY says so, and render/probe cut alike
 //   --threads N            worker threads (default: all cores)
 //   --report R.json        the solve report (see lib/hrad/report/report_json.h)
 // Every solve prints where the power went (reference/power_balance.h): emitted, absorbed, onto
@@ -107,7 +110,7 @@ void add_solve_command(CLI::App& app) {
                        clustering = "auto", push = "hsa", basis = "constant", report, out;
     double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
     int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0, source_levels = 0;
-    bool quiet = false, balance = false;
+    bool quiet = false, balance = false, cut_near_faces = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("SCENE", args->scene, "Scene file (.obj)")->required();
@@ -140,6 +143,9 @@ void add_solve_command(CLI::App& app) {
                   "Hierarchical: hsa (default, O(links) gather) | leaf (links resolved to leaves)");
   cmd->add_option("--basis", args->basis, "Radiosity per element: constant (default) | linear (bilinear on quads)");
   cmd->add_flag("--balance", args->balance, "At most one level between edge neighbours (no long T-edges)");
+  cmd->add_flag("--cut-near-faces", args->cut_near_faces,
+                "Cut faces along the outlines of parallel faces facing them from nearby (a box 1 cm above the "
+                "floor, a cabinet 1 mm from its wall)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--report", args->report, "Write the solve report (JSON) here");
   cmd->add_option("--out", args->out, "Write the leaf mesh (PLY) here");
@@ -190,6 +196,7 @@ void add_solve_command(CLI::App& app) {
     std::vector<std::string> warnings;
     ObjReadOptions read_options;
     read_options.progress = o.progress;
+    read_options.cut_near_faces = args->cut_near_faces;
     const Scene scene = read_scene(args->scene, &warnings, read_options);
     for (const std::string& w : scene_warnings(scene)) warnings.push_back(scene.path + ": warning: " + w);
     for (const std::string& w : warnings) std::cerr << w << "\n";
@@ -248,6 +255,7 @@ void add_solve_command(CLI::App& app) {
       }
       std::optional<SolutionLinks> links;
       if (kept.hierarchy) links = stored_links(kept);
+      solution.near_faces_cut = args->cut_near_faces;
       write_solution_ply(args->out, solution, exposure, links ? &*links : nullptr);
     }
     outputs.commit();

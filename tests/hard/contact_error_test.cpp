@@ -21,17 +21,6 @@
 namespace hrad {
 namespace {
 
-// The per-polygon errors of a hierarchical solve at the defaults but for `options`' basis and
-// source levels, against the ruler's face means.
-FaceErrors errors_against(const Scene& scene, const std::vector<FaceEstimate>& ruler, SolveOptions options) {
-  options.method = Method::kHierarchical;
-  options.threads = 2;
-  Solution sol;
-  const SolveSummary sum = solve(scene, options, &sol);
-  EXPECT_EQ(sum.termination, Termination::kConverged) << sum.message;
-  return test::errors_against_ruler(scene, sol, ruler);
-}
-
 // Guarantee: on a 432-polygon pillar hall the defaults err by more than 4% per polygon (the
 // control: constant elements across contacts), and linear elements and 3 source levels each by
 // less than a third of that.
@@ -48,10 +37,10 @@ TEST(ContactError, LinearElementsAndSourceLevelsResolveTheHallsContacts) {
   SolveOptions defaults, linear, levels;
   linear.basis = Basis::kLinear;
   levels.source_levels = 3;
-  const FaceErrors d = errors_against(scene, ruler, defaults);
+  const FaceErrors d = test::solve_against_ruler(scene, ruler, defaults);
   const double e0 = d.noise_corrected;
-  const double e_linear = errors_against(scene, ruler, linear).relative_l2;
-  const double e_levels = errors_against(scene, ruler, levels).relative_l2;
+  const double e_linear = test::solve_against_ruler(scene, ruler, linear).relative_l2;
+  const double e_levels = test::solve_against_ruler(scene, ruler, levels).relative_l2;
   std::printf(
       "per-polygon error against the ruler (its noise %.2f%%): defaults %.2f%% without the noise, --basis linear "
       "%.2f%% and --source-levels 3 %.2f%% with it\n",

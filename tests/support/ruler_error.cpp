@@ -16,4 +16,13 @@ FaceErrors errors_against_ruler(const Scene& scene, const Solution& solution, co
   return face_errors(faces);
 }
 
+FaceErrors solve_against_ruler(const Scene& scene, const std::vector<FaceEstimate>& ruler, SolveOptions options) {
+  options.method = Method::kHierarchical;
+  options.threads = 2;
+  Solution solution;
+  const SolveSummary summary = solve(scene, options, &solution);
+  if (summary.termination != Termination::kConverged) throw Error("the solve did not converge: " + summary.message);
+  return errors_against_ruler(scene, solution, ruler);
+}
+
 }  // namespace hrad::test

@@ -10,10 +10,15 @@
 #include "hrad/core/scene.h"
 #include "hrad/core/solution.h"
 #include "hrad/reference/reference.h"
+#include "hrad/solvers/solve.h"
 
 namespace hrad::test {
 
 /// `ruler` holds one estimate per input face of `scene`, in order.
 FaceErrors errors_against_ruler(const Scene& scene, const Solution& solution, const std::vector<FaceEstimate>& ruler);
+
+/// Solves `scene` with `options` (hierarchical on two threads, the rest as given) and scores it
+/// against `ruler` as errors_against_ruler(); throws hrad::Error when the solve does not converge.
+FaceErrors solve_against_ruler(const Scene& scene, const std::vector<FaceEstimate>& ruler, SolveOptions options);
 
 }  // namespace hrad::test

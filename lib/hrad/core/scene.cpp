@@ -26,4 +26,16 @@ int Scene::emitter_count() const {
   return n;
 }
 
+void relink_faces(Scene& scene) {
+  for (InputFace& f : scene.faces) {
+    f.patches.clear();
+    f.area = 0.0;
+  }
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    InputFace& f = scene.faces[static_cast<std::size_t>(scene.patches[i].face)];
+    f.patches.push_back(static_cast<int>(i));
+    f.area += scene.patches[i].area;
+  }
+}
+
 }  // namespace hrad

@@ -57,4 +57,8 @@ struct Scene {
   const Material& material_of(const Patch& p) const { return materials[p.material]; }
 };
 
+/// Rebuilds every face's patch list and area from the patches' face indices (after patches were cut
+/// or replaced). A face left without patches keeps no area.
+void relink_faces(Scene& scene);
+
 }  // namespace hrad

@@ -38,6 +38,8 @@ struct ObjReadOptions {
   /// published Cornell box's red wall: 1.5e-3) are still split.
   double planarity_tolerance = 1e-5;
   double max_abs_coordinate = 1e12;  ///< larger coordinates are rejected as garbage
+  /// read_scene(): cut faces along the outlines of faces a hair in front of them (io/near_faces.h).
+  bool cut_near_faces = false;
   /// Progress lines while reading large files (at most one every 2 s; none for small files).
   ProgressSink progress;
 };

@@ -15,6 +15,7 @@
 
 #include "hrad/core/error.h"
 #include "hrad/io/flush_faces.h"
+#include "hrad/io/near_faces.h"
 #include "hrad/io/input_file.h"
 #include "hrad/io/ply_file.h"
 #include "hrad/io/scene_directives.h"
@@ -156,6 +157,7 @@ Scene read_scene(const std::string& path, std::vector<std::string>* warnings, co
             ? fmt::format("; {} face{} covered entirely", cuts.hidden_faces, cuts.hidden_faces == 1 ? "" : "s")
             : std::string()));
   }
+  if (options.cut_near_faces) cut_near_faces(scene);
   return scene;
 }
 

@@ -23,6 +23,8 @@ constexpr const char* kPatch = "patch";
 // Written as a header comment; a file carrying it has its positions turned back on reading.
 constexpr const char* kZUpComment =
     "hrad axes: stored (x, -z, y) of the scene's (x, y, z): +Z up, as Blender imports PLY";
+// Written when the solve cut the scene's faces along near faces: readers of the scene cut alike.
+constexpr const char* kNearFacesCutComment = "hrad scene: faces cut along near faces (hrad solve --cut-near-faces)";
 
 std::string links_defect(const SolutionLinks& links);
 
@@ -152,6 +154,7 @@ void write_solution_ply(std::ostream& out, const Solution& solution, double expo
   std::string header = "ply\nformat binary_little_endian 1.0\n";
   header += "comment written by hrad: leaf elements with per-vertex and per-element radiosity\n";
   header += fmt::format("comment {}\n", kZUpComment);
+  if (solution.near_faces_cut) header += fmt::format("comment {}\n", kNearFacesCutComment);
   header += fmt::format("element vertex {}\n", solution.vertices.size());
   header += "property double x\nproperty double y\nproperty double z\n";
   header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
@@ -221,6 +224,8 @@ Solution read_solution_ply(const std::string& path, std::optional<SolutionLinks>
     throw Error(fmt::format("{}: not an hrad solution: no 'vertex' or no 'face' element", path));
   bool z_up = false;
   for (const std::string& c : ply.comments) z_up = z_up || c == kZUpComment;
+  bool near_faces_cut = false;
+  for (const std::string& c : ply.comments) near_faces_cut = near_faces_cut || c == kNearFacesCutComment;
 
   const std::vector<double>& x = values_of(path, *vertex, "x");
   const std::vector<double>& y = values_of(path, *vertex, "y");
@@ -236,6 +241,7 @@ Solution read_solution_ply(const std::string& path, std::optional<SolutionLinks>
   const std::vector<double>& patch = values_of(path, *face, kPatch);
 
   Solution s;
+  s.near_faces_cut = near_faces_cut;
   s.vertices.reserve(vertex->count);
   for (std::size_t i = 0; i < vertex->count; ++i) {
     s.vertices.push_back(z_up ? Vec3(x[i], z[i], -y[i]) : Vec3(x[i], y[i], z[i]));

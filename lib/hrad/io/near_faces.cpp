@@ -1,0 +1,89 @@
+#include "hrad/io/near_faces.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+#include <utility>
+
+#include "hrad/core/scene_checks.h"
+#include "hrad/geometry/convex_clip.h"
+#include "hrad/geometry/polygon.h"
+
+namespace hrad {
+
+NearCuts cut_near_faces(Scene& scene, double gap) {
+  NearCuts cuts;
+  if (scene.patches.empty() || !(gap > 0.0)) return cuts;
+  const auto [lo, hi] = scene.bounds();
+  const double size = (hi - lo).norm();
+  // Bucketed by the normal's direction, either way (rounded to 1e-6), each with its offset along it.
+  struct Member {
+    double offset;
+    int patch;
+    bool forward;  // faces along the bucket's direction
+  };
+  std::map<std::tuple<long long, long long, long long>, std::vector<Member>> buckets;
+  std::vector<double> diameter(scene.patches.size());
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    const Patch& p = scene.patches[i];
+    diameter[i] = polygon_diameter(p.vertices);
+    Vec3 d = p.normal;
+    int axis = 0;
+    d.cwiseAbs().maxCoeff(&axis);
+    const bool forward = d[axis] > 0.0;
+    if (!forward) d = -d;
+    const auto q = [](double x) { return static_cast<long long>(std::llround(x / 1e-6)); };
+    buckets[{q(d.x()), q(d.y()), q(d.z())}].push_back({d.dot(p.vertices[0]), static_cast<int>(i), forward});
+  }
+  std::vector<std::vector<int>> cutters(scene.patches.size());
+  for (auto& [key, members] : buckets) {
+    if (members.size() < 2) continue;
+    std::sort(members.begin(), members.end(), [](const Member& a, const Member& b) {
+      return std::pair{a.offset, a.patch} < std::pair{b.offset, b.patch};
+    });
+    double widest = 0.0;
+    for (const Member& m : members) widest = std::max(widest, diameter[static_cast<std::size_t>(m.patch)]);
+    const double window = gap * widest, floor = 1e-9 * size;
+    for (std::size_t i = 0; i < members.size(); ++i) {
+      // A behind facing forward, B in front facing back: they face each other across offset B - A.
+      const Member& a = members[i];
+      if (!a.forward) continue;
+      for (std::size_t j = i + 1; j < members.size() && members[j].offset - a.offset <= window; ++j) {
+        const Member& b = members[j];
+        const double g = b.offset - a.offset;
+        if (b.forward || !(g > floor)) continue;
+        const Patch& pa = scene.patches[static_cast<std::size_t>(a.patch)];
+        const Patch& pb = scene.patches[static_cast<std::size_t>(b.patch)];
+        if (pa.face == pb.face || pa.normal.dot(pb.normal) > -1.0 + 1e-12) continue;
+        const bool cut_a = g <= gap * diameter[static_cast<std::size_t>(b.patch)];
+        const bool cut_b = g <= gap * diameter[static_cast<std::size_t>(a.patch)];
+        if (!cut_a && !cut_b) continue;
+        Patch shadow = pb;  // b projected onto a's plane
+        for (Vec3& v : shadow.vertices) v -= (v - pa.vertices[0]).dot(pa.normal) * pa.normal;
+        if (!patches_overlap(pa, shadow, pa.normal, 1e-7 * size)) continue;
+        if (cut_a) cutters[static_cast<std::size_t>(a.patch)].push_back(b.patch), ++cuts.pairs;
+        if (cut_b) cutters[static_cast<std::size_t>(b.patch)].push_back(a.patch), ++cuts.pairs;
+      }
+    }
+  }
+  if (cuts.pairs == 0) return cuts;
+  std::vector<Patch> patches;
+  patches.reserve(scene.patches.size());
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
+    const Patch& p = scene.patches[i];
+    if (cutters[i].empty()) {
+      patches.push_back(p);
+      continue;
+    }
+    std::vector<const Patch*> outlines;
+    for (const int c : cutters[i]) outlines.push_back(&scene.patches[static_cast<std::size_t>(c)]);
+    append_cut(p, outlines, true, size, &patches);
+  }
+  cuts.patches_added = patches.size() > scene.patches.size() ? patches.size() - scene.patches.size() : 0;
+  scene.patches = std::move(patches);
+  relink_faces(scene);
+  return cuts;
+}
+
+}  // namespace hrad
