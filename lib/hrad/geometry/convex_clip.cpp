@@ -170,4 +170,22 @@ double append_cut(const Patch& p, const std::vector<const Patch*>& cutters, bool
   return appended;
 }
 
+std::vector<Patch> cut_patches(const std::vector<Patch>& patches, const std::vector<std::vector<int>>& cutters,
+                               bool keep_inside, double size, double* removed) {
+  std::vector<Patch> out;
+  out.reserve(patches.size());
+  double dropped = 0.0;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    if (cutters[i].empty()) {
+      out.push_back(patches[i]);
+      continue;
+    }
+    std::vector<const Patch*> outlines;
+    for (const int c : cutters[i]) outlines.push_back(&patches[static_cast<std::size_t>(c)]);
+    dropped += patches[i].area - append_cut(patches[i], outlines, keep_inside, size, &out);
+  }
+  if (removed != nullptr) *removed = dropped;
+  return out;
+}
+
 }  // namespace hrad

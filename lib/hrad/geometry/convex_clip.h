@@ -52,4 +52,9 @@ struct PatchFrame {
 double append_cut(const Patch& p, const std::vector<const Patch*>& cutters, bool keep_inside, double size,
                   std::vector<Patch>* out);
 
+/// `patches` with each patch i cut by append_cut() along the patches `cutters[i]` (indices into
+/// `patches`), a patch without cutters as it is; `removed` (when not null) gets the area dropped.
+std::vector<Patch> cut_patches(const std::vector<Patch>& patches, const std::vector<std::vector<int>>& cutters,
+                               bool keep_inside, double size, double* removed = nullptr);
+
 }  // namespace hrad

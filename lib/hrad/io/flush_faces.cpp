@@ -37,20 +37,9 @@ FlushCuts cut_flush_faces(Scene& scene) {
       cuts.first_beneath = scene.patches[static_cast<std::size_t>(beneath)].face;
     }
   }
-  std::vector<Patch> patches;
-  patches.reserve(scene.patches.size());
-  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
-    // Copied, not moved: a patch beneath may come after the patches on top of it.
-    const Patch& b = scene.patches[i];
-    if (covers[i].empty()) {
-      patches.push_back(b);
-      continue;
-    }
-    std::vector<const Patch*> tops;
-    for (const int t : covers[i]) tops.push_back(&scene.patches[static_cast<std::size_t>(t)]);
-    cuts.covered_area += b.area - append_cut(b, tops, false, size, &patches);
-  }
-  scene.patches = std::move(patches);
+  // The patches beneath may come before or after the patches on top of them: all are cut from the
+  // patches as given.
+  scene.patches = cut_patches(scene.patches, covers, false, size, &cuts.covered_area);
   std::vector<char> had(scene.faces.size(), 0);
   for (std::size_t f = 0; f < scene.faces.size(); ++f) had[f] = !scene.faces[f].patches.empty();
   relink_faces(scene);

@@ -68,20 +68,9 @@ NearCuts cut_near_faces(Scene& scene, double gap) {
     }
   }
   if (cuts.pairs == 0) return cuts;
-  std::vector<Patch> patches;
-  patches.reserve(scene.patches.size());
-  for (std::size_t i = 0; i < scene.patches.size(); ++i) {
-    const Patch& p = scene.patches[i];
-    if (cutters[i].empty()) {
-      patches.push_back(p);
-      continue;
-    }
-    std::vector<const Patch*> outlines;
-    for (const int c : cutters[i]) outlines.push_back(&scene.patches[static_cast<std::size_t>(c)]);
-    append_cut(p, outlines, true, size, &patches);
-  }
-  cuts.patches_added = patches.size() > scene.patches.size() ? patches.size() - scene.patches.size() : 0;
-  scene.patches = std::move(patches);
+  const std::size_t before = scene.patches.size();
+  scene.patches = cut_patches(scene.patches, cutters, true, size);
+  cuts.patches_added = scene.patches.size() > before ? scene.patches.size() - before : 0;
   relink_faces(scene);
   return cuts;
 }
