@@ -64,28 +64,31 @@ std::vector<std::pair<int, int>> flush_pairs(const Scene& scene) {
             q(p.normal.dot(p.vertices[0]), 1e-7 * size)}]
         .push_back(static_cast<int>(i));
   }
-  for (auto& [key, members] : planes) {
+  for (const auto& [key, members] : planes) {
     if (members.size() < 2) continue;
     int axis = 0;
     scene.patches[static_cast<std::size_t>(members[0])].normal.cwiseAbs().minCoeff(&axis);
-    const auto extent = [&](int i) {
-      double a = INFINITY, b = -INFINITY;
-      for (const Vec3& v : scene.patches[static_cast<std::size_t>(i)].vertices)
-        a = std::min(a, v[axis]), b = std::max(b, v[axis]);
-      return std::pair{a, b};
+    struct Span {
+      double lo, hi;
+      int patch;
     };
-    std::sort(members.begin(), members.end(), [&](int a, int b) {
-      return std::pair{extent(a).first, a} < std::pair{extent(b).first, b};
-    });
-    for (std::size_t i = 0; i < members.size(); ++i) {
-      const double end = extent(members[i]).second;
-      for (std::size_t j = i + 1; j < members.size() && extent(members[j]).first < end - tol; ++j) {
-        const Patch& a = scene.patches[static_cast<std::size_t>(members[i])];
-        const Patch& b = scene.patches[static_cast<std::size_t>(members[j])];
-        if (a.face == b.face || !patches_overlap(a, b, a.normal, tol)) continue;
-        pairs.emplace_back(std::min(members[i], members[j]), std::max(members[i], members[j]));
-      }
+    std::vector<Span> spans;
+    for (const int i : members) {
+      Span s{INFINITY, -INFINITY, i};
+      for (const Vec3& v : scene.patches[static_cast<std::size_t>(i)].vertices)
+        s.lo = std::min(s.lo, v[axis]), s.hi = std::max(s.hi, v[axis]);
+      spans.push_back(s);
     }
+    std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) {
+      return std::pair{a.lo, a.patch} < std::pair{b.lo, b.patch};
+    });
+    for (std::size_t i = 0; i < spans.size(); ++i)
+      for (std::size_t j = i + 1; j < spans.size() && spans[j].lo < spans[i].hi - tol; ++j) {
+        const Patch& a = scene.patches[static_cast<std::size_t>(spans[i].patch)];
+        const Patch& b = scene.patches[static_cast<std::size_t>(spans[j].patch)];
+        if (a.face == b.face || !patches_overlap(a, b, a.normal, tol)) continue;
+        pairs.emplace_back(std::min(spans[i].patch, spans[j].patch), std::max(spans[i].patch, spans[j].patch));
+      }
   }
   std::sort(pairs.begin(), pairs.end());
   return pairs;
