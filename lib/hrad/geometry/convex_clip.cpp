@@ -128,22 +128,8 @@ Polygon2 PatchFrame::counter_clockwise(const std::vector<Vec3>& vertices) const 
   return poly;
 }
 
-double append_cut(const Patch& p, const std::vector<const Patch*>& cutters, bool keep_inside, double size,
-                  std::vector<Patch>* out) {
-  const PatchFrame frame(p);
-  std::vector<Polygon2> outlines;
-  for (const Patch* c : cutters) outlines.push_back(frame.counter_clockwise(c->vertices));
-  std::vector<Polygon2> pieces = {frame.counter_clockwise(p.vertices)};
-  for (const Polygon2& outline : merged(std::move(outlines), 1e-9 * p.area)) {
-    std::vector<Polygon2> next;
-    for (const Polygon2& piece : pieces) {
-      for (Polygon2& outside : subtract(piece, outline)) next.push_back(std::move(outside));
-      if (!keep_inside) continue;
-      Polygon2 inside = intersect(piece, outline);
-      if (inside.size() >= 3) next.push_back(std::move(inside));
-    }
-    pieces = std::move(next);
-  }
+double append_pieces(const Patch& p, const PatchFrame& frame, const std::vector<Polygon2>& pieces, double size,
+                     std::vector<Patch>* out) {
   double appended = 0.0;
   for (const Polygon2& piece : pieces) {
     const Polygon2 c = corners_of(piece, 1e-9 * size);
@@ -168,6 +154,25 @@ double append_cut(const Patch& p, const std::vector<const Patch*>& cutters, bool
     }
   }
   return appended;
+}
+
+double append_cut(const Patch& p, const std::vector<const Patch*>& cutters, bool keep_inside, double size,
+                  std::vector<Patch>* out) {
+  const PatchFrame frame(p);
+  std::vector<Polygon2> outlines;
+  for (const Patch* c : cutters) outlines.push_back(frame.counter_clockwise(c->vertices));
+  std::vector<Polygon2> pieces = {frame.counter_clockwise(p.vertices)};
+  for (const Polygon2& outline : merged(std::move(outlines), 1e-9 * p.area)) {
+    std::vector<Polygon2> next;
+    for (const Polygon2& piece : pieces) {
+      for (Polygon2& outside : subtract(piece, outline)) next.push_back(std::move(outside));
+      if (!keep_inside) continue;
+      Polygon2 inside = intersect(piece, outline);
+      if (inside.size() >= 3) next.push_back(std::move(inside));
+    }
+    pieces = std::move(next);
+  }
+  return append_pieces(p, frame, pieces, size, out);
 }
 
 std::vector<Patch> cut_patches(const std::vector<Patch>& patches, const std::vector<std::vector<int>>& cutters,

@@ -42,6 +42,13 @@ struct PatchFrame {
   Vec3 origin, e1, e2;
 };
 
+/// Appends the convex `pieces` of patch `p` (in `frame`) to `out` as patches of p's face and material:
+/// triangles and convex quadrilaterals (a piece of more corners as a fan of triangles); repeated and
+/// collinear corners (within 1e-9 of `size`) are dropped, and so are pieces thinner than 1e-6 of
+/// `size`. Returns the area appended.
+double append_pieces(const Patch& p, const PatchFrame& frame, const std::vector<Polygon2>& pieces, double size,
+                     std::vector<Patch>* out);
+
 /// Appends patch `p` to `out` cut along the outlines of the patches `cutters` (lying in p's plane or
 /// projected onto it; cutters that tile a convex polygon merged first): without `keep_inside` what
 /// they cover is dropped (io/flush_faces.h), with it kept as pieces of its own (io/near_faces.h). The

@@ -40,6 +40,8 @@ struct ObjReadOptions {
   double max_abs_coordinate = 1e12;  ///< larger coordinates are rejected as garbage
   /// read_scene(): cut faces along the outlines of faces a hair in front of them (io/near_faces.h).
   bool cut_near_faces = false;
+  /// read_scene(): cut faces along the planes of emitters they cross nearby (io/emitter_planes.h).
+  bool cut_emitter_planes = true;
   /// Progress lines while reading large files (at most one every 2 s; none for small files).
   ProgressSink progress;
 };

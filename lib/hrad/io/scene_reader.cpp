@@ -16,6 +16,8 @@
 #include "hrad/core/error.h"
 #include "hrad/io/flush_faces.h"
 #include "hrad/io/near_faces.h"
+#include "hrad/io/emitter_planes.h"
+
 #include "hrad/io/input_file.h"
 #include "hrad/io/ply_file.h"
 #include "hrad/io/scene_directives.h"
@@ -158,6 +160,7 @@ Scene read_scene(const std::string& path, std::vector<std::string>* warnings, co
             : std::string()));
   }
   if (options.cut_near_faces) cut_near_faces(scene);
+  if (options.cut_emitter_planes) cut_emitter_planes(scene);
   return scene;
 }
 
