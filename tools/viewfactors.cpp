@@ -212,6 +212,7 @@ void solve_exchange_command(const CLI::App& cmd, Args& args) {
   std::vector<std::string> warnings;
   ObjReadOptions read_options;
   read_options.progress = o.progress;
+  read_options.cut_emitter_planes = false;  // view factors are geometry: no lamp's light to follow
   Vs3Model model;
   if (vs3_input) {
     model = read_vs3(args.scene, &warnings);
@@ -343,6 +344,7 @@ void add_viewfactors_command(CLI::App& app) {
     std::vector<std::string> warnings;
     ObjReadOptions read_options;
     read_options.progress = options.progress;
+    read_options.cut_emitter_planes = false;  // view factors are geometry: no lamp's light to follow
     Vs3Model model;
     if (vs3_input) {
       model = read_vs3(args->scene, &warnings);
