@@ -75,6 +75,12 @@ constexpr int kMostLinkSamples = 16;
 // against a converged reference 1.87 -> 1.85%, 0.67 -> 0.72%, 0.25 -> 0.09%.
 constexpr double kGatherNoise = 0.1;
 constexpr double kLeastLinkSamples = 16.0;
+// Never fewer pairs than this, whatever --visibility-samples: from one or two, the ratio is the
+// pairs' unweighted visibility, and near pairs whose kernel peaks where they see each other (a
+// lamp's trough, its top and sides meeting at shared edges) came out dark: RenderPark's office2 at
+// --basis linear --visibility-samples 4 lost 2% of its power, 0.1% with 4 (tests/hard/
+// lamp_housing_test.cpp).
+constexpr double kFewestLinkSamples = 4.0;
 
 // One side of an element pair: the receiver's points, their unoccluded point factors to the
 // source, and their visible fractions of it.
@@ -591,7 +597,7 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
     const double gathered = std::max(c.share_p, c.share_q);
     const double wanted = scale * std::ceil(std::max(std::pow(share / (2.0 * kPowerNoise), 2),
                                                      std::pow(gathered / (2.0 * kGatherNoise), 2)));
-    const int samples = static_cast<int>(std::clamp(wanted, std::max(1.0, scale * kLeastLinkSamples),
+    const int samples = static_cast<int>(std::clamp(wanted, std::max(kFewestLinkSamples, scale * kLeastLinkSamples),
                                                     static_cast<double>(kMostLinkSamples * pair_samples_)));
     fraction =
         evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, among, samples, kLinkedFractionStream);
