@@ -134,9 +134,9 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option(
       "--kernel", args->kernel,
       "Full/substructure: form-factor kernel: contour (default) | analytic (hierarchical: always analytic)");
-  cmd->add_option(
-      "--visibility-samples", args->visibility_samples,
-      "Point pairs per partially visible pair (default 64; hierarchical links scale their own counts by it / 64)");
+  cmd->add_option("--visibility-samples", args->visibility_samples,
+                  "Point pairs per partially visible pair (default 64; hierarchical links scale their own counts by it "
+                  "/ 64, at least 4)");
   cmd->add_option("--clustering", args->clustering,
                   "Hierarchical: auto | on | off (default auto: on from 200 patches)");
   cmd->add_option("--push", args->push,
