@@ -1,0 +1,25 @@
+// Emitters whose direct light stands out from the light a room already has, and the patches near
+// them: where a lamp's near field (the dark side of its plane, the peak of its light on the faces
+// beside it) is worth resolving (io/emitter_planes.h, `hrad solve --source-levels auto`).
+#pragma once
+
+#include <vector>
+
+#include "hrad/core/scene.h"
+
+namespace hrad {
+
+/// The mean radiosity of a closed room of the scene's area-mean emission and reflectance,
+/// E_mean / (1 - rho_mean), channels summed (the reflectance's mean over them).
+double closed_room_radiosity(const Scene& scene);
+
+/// The patches whose emission (channels summed) exceeds closed_room_radiosity(): none in a furnace,
+/// where every face emits alike.
+std::vector<int> bright_emitters(const Scene& scene);
+
+/// For each patch, the bright emitters (patch indices, ascending) whose bounding box, grown on every
+/// side by `reach` times the emitter's diameter, meets the patch's; an emitter is not near itself.
+/// A sweep along x over both kinds of box.
+std::vector<std::vector<int>> near_bright_emitters(const Scene& scene, double reach);
+
+}  // namespace hrad
