@@ -17,7 +17,8 @@
 //   --source-levels N      hierarchical (HSA push): quadtree levels below --aeps to which a source
 //                          element may still split where a receiver's kernel peaks over part of it
 //                          and its reflected radiosity may vary there: contacts, the inside of a
-//                          lamp's housing (default 0: --aeps bounds every split)
+//                          lamp's housing (default 0: --aeps bounds every split); auto: 2 levels on
+//                          the patches near bright lamps only (core/bright_emitters.h)
 //   --tolerance T          iterations stop when the estimated error of the answer, relative to the
 //                          largest reflected radiosity, is below T: the last change times q / (1 - q),
 //                          q the contraction per iteration estimated from successive changes
@@ -63,6 +64,7 @@
 //   --quiet                no progress on stderr
 // Options out of range (zero, negative or NaN tolerances and areas, unknown names) are an error
 // with exit status 1 before the scene is read.
+#include <charconv>
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -85,6 +87,15 @@
 namespace hrad::cli {
 
 namespace {
+
+// --source-levels N: an integer (solve() checks its range), or `auto`, read by the caller.
+int parse_source_levels(const std::string& text) {
+  int n = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (ec != std::errc() || end != text.data() + text.size())
+    throw Error(fmt::format("--source-levels must be auto or an integer in [0, {}], got '{}'", kMaxSourceLevels, text));
+  return n;
+}
 
 // What to try when a solve does not balance power, from what it used (README "Limits").
 std::string balance_advice(const SolveSummary& summary) {
@@ -109,7 +120,8 @@ void add_solve_command(CLI::App& app) {
     std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", kernel = "contour",
                        clustering = "auto", push = "hsa", basis = "constant", report, out;
     double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
-    int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0, source_levels = 0;
+    int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0;
+    std::string source_levels = "0";
     bool quiet = false, balance = false, cut_near_faces = false;
   };
   auto args = std::make_shared<Args>();
@@ -123,7 +135,8 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--aeps", args->aeps, "Hierarchical: smallest element area (default automatic)");
   cmd->add_option("--source-levels", args->source_levels,
                   "Hierarchical: levels below --aeps a source may split to where a receiver's kernel peaks over "
-                  "part of it (contacts, lamp housings; default 0)");
+                  "part of it (contacts, lamp housings), or auto: 2 levels on the patches near bright lamps only "
+                  "(default 0)");
   cmd->add_option(
       "--tolerance", args->tolerance,
       "Stop when the estimated relative error (last change x q/(1-q), q the contraction) is below this (default 1e-6)");
@@ -180,7 +193,12 @@ void add_solve_command(CLI::App& app) {
     o.feps = args->feps;
     o.bfeps = args->bfeps;
     o.aeps = args->aeps;
-    o.source_levels = args->source_levels;
+    if (args->source_levels == "auto") {
+      o.source_levels = kAutoSourceLevels;
+      o.source_levels_near_lamps = true;
+    } else {
+      o.source_levels = parse_source_levels(args->source_levels);
+    }
     o.tolerance = args->tolerance;
     o.max_iterations = args->max_iterations;
     o.visibility_samples = args->visibility_samples;

@@ -17,6 +17,7 @@
 
 #include "../solvers/solver_test_scenes.h"
 #include "hrad/analysis/error_metrics.h"
+#include "hrad/core/bright_emitters.h"
 #include "hrad/io/emitter_planes.h"
 #include "hrad/reference/reference.h"
 #include "hrad/solvers/solve.h"
@@ -79,10 +80,11 @@ Trough lamp_trough(double width, double drop) {
 
 // The face's radiosity (one patch each here) from a hierarchical solve at the defaults but for
 // --source-levels.
-Solution solved_with_levels(const Scene& s, int source_levels) {
+Solution solved_with_levels(const Scene& s, int source_levels, bool near_lamps = false) {
   SolveOptions o;
   o.method = Method::kHierarchical;
   o.source_levels = source_levels;
+  o.source_levels_near_lamps = near_lamps;
   Solution sol;
   const SolveSummary sum = solve(s, o, &sol);
   EXPECT_EQ(sum.termination, Termination::kConverged) << sum.message;
@@ -158,6 +160,49 @@ TEST(LampHousing, InnerTopMatchesTheRulerWhenCutAlongTheLampsPlane) {
     EXPECT_LT(std::abs(energy_balance(cut, sol).closed_scene_residual[0]), 1e-3);
     std::printf("width %g, lamp %g below the top: inner top %.4f +- %.4f (ruler), cut at the defaults %+.1f%%\n", width,
                 drop, truth, se, 100 * (sol.patch_radiosity[top][0] / truth - 1));
+  }
+}
+
+// Guarantee: `--source-levels auto` (2 levels, on the patches near bright lamps only), on the trough
+// cut along the lamp's plane as the readers cut it, brings the inner top within the same bound, and
+// the room balances power within 1e-3; elements below aeps appear only on patches within the lamp's
+// diameter of it, none on the room's walls and floor, which 3 levels everywhere split at the room's
+// corners too (the control).
+TEST(LampHousing, AutoSourceLevelsSplitOnlyNearTheLamp) {
+  for (const auto& [width, drop] : {std::pair{0.076, 0.018}, std::pair{0.1, 0.025}}) {
+    const Trough t = lamp_trough(width, drop);
+    SCOPED_TRACE(::testing::Message() << "width " << width << ", lamp " << drop << " below the top");
+    const auto [truth, se] = ruler_inner_top(t);
+    Scene cut = t.scene;
+    cut_emitter_planes(cut);
+    const auto top = static_cast<std::size_t>(cut.faces[static_cast<std::size_t>(t.inner_top)].patches.at(0));
+    const Solution sol = solved_with_levels(cut, kAutoSourceLevels, true);
+    EXPECT_NEAR(sol.patch_radiosity[top][0], truth, 4.0 * se + 0.03 * truth);
+    EXPECT_LT(std::abs(energy_balance(cut, sol).closed_scene_residual[0]), 1e-3);
+    std::printf("width %g, lamp %g below the top: inner top %.4f +- %.4f (ruler), cut, --source-levels auto %+.1f%%\n",
+                width, drop, truth, se, 100 * (sol.patch_radiosity[top][0] / truth - 1));
+    const std::vector<std::vector<int>> near = near_bright_emitters(cut, kLampReach);
+    for (const bool near_lamps : {true, false}) {
+      SolveOptions o;
+      o.method = Method::kHierarchical;
+      o.source_levels = near_lamps ? kAutoSourceLevels : 3;
+      o.source_levels_near_lamps = near_lamps;
+      Solution s;
+      const double aeps = solve(cut, o, &s).figures.at("aeps");
+      int below_near = 0, below_far = 0;
+      for (std::size_t f = 0; f < s.faces.size(); ++f) {
+        std::vector<Vec3> v;
+        for (const int i : s.faces[f]) v.push_back(s.vertices[static_cast<std::size_t>(i)]);
+        const auto patch = static_cast<std::size_t>(s.face_patch[f]);
+        if (polygon_area(v) >= aeps || polygon_area(v) >= cut.patches[patch].area * (1 - 1e-9)) continue;
+        (near[patch].empty() ? below_far : below_near) += 1;
+      }
+      EXPECT_GT(below_near, 0) << (near_lamps ? "auto" : "3 levels");
+      if (near_lamps)
+        EXPECT_EQ(below_far, 0);
+      else
+        EXPECT_GT(below_far, 0);  // the control: everywhere means the room's corners too
+    }
   }
 }
 

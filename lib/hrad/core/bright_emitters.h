@@ -9,6 +9,9 @@
 
 namespace hrad {
 
+/// A lamp's near field: patches within this many times its diameter of it (bounding boxes).
+inline constexpr double kLampReach = 1.0;
+
 /// The mean radiosity of a closed room of the scene's area-mean emission and reflectance,
 /// E_mean / (1 - rho_mean), channels summed (the reflectance's mean over them).
 double closed_room_radiosity(const Scene& scene);

@@ -9,13 +9,14 @@
 
 #include <cstddef>
 
+#include "hrad/core/bright_emitters.h"
 #include "hrad/core/scene.h"
 
 namespace hrad {
 
 /// How near: a face is cut along an emitter's plane when its bounding box meets the emitter's grown
-/// on every side by this many times the emitter's diameter.
-inline constexpr double kEmitterPlaneReach = 1.0;
+/// on every side by this many times the emitter's diameter (the lamp's near field).
+inline constexpr double kEmitterPlaneReach = kLampReach;
 
 /// A cut is made only when each side keeps at least this fraction of the piece it splits: a sliver
 /// along a wall that passes a lamp's plane a hair above it gathers and sends next to nothing.

@@ -25,6 +25,7 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
                   {"bfeps", used.bfeps},
                   {"aeps", used.aeps},
                   {"source_levels", used.source_levels},
+                  {"source_levels_near_lamps", used.source_levels_near_lamps},
                   {"tolerance", used.tolerance},
                   {"max_iterations", used.max_iterations},
                   {"linear_solver", std::string(to_string(used.linear_solver))},

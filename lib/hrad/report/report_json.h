@@ -13,7 +13,8 @@
 namespace hrad {
 
 /// The report of one solve:
-///   scene, method, options {max_area, patch_area, feps, bfeps, aeps, source_levels, tolerance, max_iterations,
+///   scene, method, options {max_area, patch_area, feps, bfeps, aeps, source_levels, source_levels_near_lamps,
+///   tolerance, max_iterations,
 ///     linear_solver, effects, kernel, visibility_samples, clustering, push, basis, balance, threads}: as the solve
 ///     used them (SolveSummary::used: automatic values filled in, the method's kernel),
 ///   termination ("converged" | "max_iterations" | "direct" | "failed"), status (the same), message,

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "hrad/core/bright_emitters.h"
 #include "hrad/geometry/polygon.h"
 #include "hrad/solvers/cluster_transfer.h"
 #include "hrad/solvers/cluster_tree.h"
@@ -107,10 +108,21 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   }
   const ClusterTransfer geometry(scene, h, tree.get());
   std::vector<Rgb> cluster_radiosity(tree ? tree->size() : 0, Rgb::Zero());
-  ErrorBoundOracle oracle(
-      h, tree.get(), geometry, ctx.evaluator(),
-      {t.feps, t.bfeps, t.aeps, options.push == Push::kHsa, options.basis == Basis::kLinear, options.source_levels},
-      source_weights(scene, ctx.channels()), ctx.channels(), &cluster_radiosity);
+  OracleTolerances tolerances{t.feps,
+                              t.bfeps,
+                              t.aeps,
+                              options.push == Push::kHsa,
+                              options.basis == Basis::kLinear,
+                              options.source_levels,
+                              {}};
+  if (options.source_levels > 0 && options.source_levels_near_lamps) {
+    // Sources split below aeps only on the patches near a bright lamp (SolveOptions).
+    const std::vector<std::vector<int>> near = near_bright_emitters(scene, kLampReach);
+    tolerances.source_patches.resize(near.size());
+    for (std::size_t i = 0; i < near.size(); ++i) tolerances.source_patches[i] = near[i].empty() ? 0 : 1;
+  }
+  ErrorBoundOracle oracle(h, tree.get(), geometry, ctx.evaluator(), tolerances, source_weights(scene, ctx.channels()),
+                          ctx.channels(), &cluster_radiosity);
 
   std::vector<Candidate> work;
   if (tree) {

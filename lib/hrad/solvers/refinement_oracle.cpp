@@ -329,6 +329,7 @@ bool ErrorBoundOracle::can_split(NodeRef r) const {
 
 bool ErrorBoundOracle::can_split_source(NodeRef r) const {
   if (is_cluster(r) || tol_.source_levels <= 0 || can_split(r)) return false;
+  if (!tol_.source_patches.empty() && !tol_.source_patches[static_cast<std::size_t>(h_.node(r).patch)]) return false;
   return h_.node(r).area * 0.25 >= std::ldexp(tol_.aeps, -2 * tol_.source_levels);
 }
 

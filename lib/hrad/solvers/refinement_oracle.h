@@ -107,6 +107,8 @@ struct OracleTolerances {
   /// aeps / 4^source_levels and the test below finds the receiver's error from its varying
   /// reflected radiosity above the tolerance. 0: aeps bounds every split.
   int source_levels = 0;
+  /// Per patch, whether its elements may split below aeps as sources (empty: all may).
+  std::vector<char> source_patches;
 };
 
 /// Pairs of clusters (or a cluster and an element) farther apart than this many times the sum of

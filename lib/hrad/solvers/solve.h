@@ -64,6 +64,8 @@ inline constexpr int kDefaultVisibilitySamples = 64;
 
 /// The most quadtree levels below aeps that --source-levels allows (aeps / 4096).
 inline constexpr int kMaxSourceLevels = 6;
+/// `--source-levels auto`: this many levels, near bright emitters only (SolveOptions).
+inline constexpr int kAutoSourceLevels = 2;
 
 struct SolveOptions {
   Method method = Method::kHierarchical;
@@ -82,6 +84,10 @@ struct SolveOptions {
   /// where a receiver's kernel peaks over part of it (contacts, lamp housings;
   /// OracleTolerances::source_levels); 0 = aeps bounds every split.
   int source_levels = 0;
+  /// With source_levels: only elements of patches near a bright emitter (within its diameter,
+  /// core/bright_emitters.h) split below aeps, where a lamp's light varies most (its housing, the
+  /// walls beside it); elsewhere aeps bounds every split. `--source-levels auto`: kAutoSourceLevels so.
+  bool source_levels_near_lamps = false;
   /// Iterations stop when the estimated error of the returned radiosity, relative to the largest
   /// reflected radiosity B - E, is below this: the last change of any element's radiosity (any
   /// channel) times q / (1 - q), q the contraction per iteration estimated from successive changes
