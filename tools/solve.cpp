@@ -64,7 +64,6 @@
 //   --quiet                no progress on stderr
 // Options out of range (zero, negative or NaN tolerances and areas, unknown names) are an error
 // with exit status 1 before the scene is read.
-#include <charconv>
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -87,15 +86,6 @@
 namespace hrad::cli {
 
 namespace {
-
-// --source-levels N: an integer (solve() checks its range), or `auto`, read by the caller.
-int parse_source_levels(const std::string& text) {
-  int n = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
-  if (ec != std::errc() || end != text.data() + text.size())
-    throw Error(fmt::format("--source-levels must be auto or an integer in [0, {}], got '{}'", kMaxSourceLevels, text));
-  return n;
-}
 
 // What to try when a solve does not balance power, from what it used (README "Limits").
 std::string balance_advice(const SolveSummary& summary) {
@@ -193,12 +183,9 @@ void add_solve_command(CLI::App& app) {
     o.feps = args->feps;
     o.bfeps = args->bfeps;
     o.aeps = args->aeps;
-    if (args->source_levels == "auto") {
-      o.source_levels = kAutoSourceLevels;
-      o.source_levels_near_lamps = true;
-    } else {
-      o.source_levels = parse_source_levels(args->source_levels);
-    }
+    const SourceLevels levels = parse_source_levels(args->source_levels);
+    o.source_levels = levels.levels;
+    o.source_levels_near_lamps = levels.near_lamps;
     o.tolerance = args->tolerance;
     o.max_iterations = args->max_iterations;
     o.visibility_samples = args->visibility_samples;

@@ -72,7 +72,8 @@ void add_sweep_command(CLI::App& app) {
     double reference_elements = 0.0, target_error = 0.01, feps_aeps = 0.0;
     int samples = 256, threads = 0;
     std::string elements, patches, feps, aeps, reference_from, push = "hsa", basis = "constant,linear";
-    int visibility_samples = 0, source_levels = 0;
+    int visibility_samples = 0;
+    std::string source_levels = "0";
     bool no_gather = false;
     double gather_tolerance = 1e-2;
     std::string gather_sources = "links";
@@ -104,7 +105,7 @@ void add_sweep_command(CLI::App& app) {
                   "Point pairs per partly visible pair in every run (default: the solvers'); the reference uses 4x");
   cmd->add_option("--source-levels", args->source_levels,
                   "Hierarchical runs: levels below aeps a source may split to where a receiver's kernel peaks over "
-                  "part of it (default 0)");
+                  "part of it, or auto: 2 levels near bright lamps only (default 0)");
   cmd->add_flag("--no-gather", args->no_gather, "Do not final-gather the runs (error_l2_gathered is nan)");
   cmd->add_option("--gather-tolerance", args->gather_tolerance,
                   "Barnes-Hut tolerance of the runs' final gather, relative to the mean radiosity (default 1e-2)");
@@ -185,9 +186,9 @@ void add_sweep_command(CLI::App& app) {
     if (!feps.empty()) options.feps_values = feps;
     if (!aeps.empty()) options.aeps_fractions = aeps;
     options.visibility_samples = args->visibility_samples;
-    if (args->source_levels < 0 || args->source_levels > kMaxSourceLevels)
-      throw Error(fmt::format("--source-levels must be in [0, {}], got {}", kMaxSourceLevels, args->source_levels));
-    options.source_levels = args->source_levels;
+    const SourceLevels levels = parse_source_levels(args->source_levels);
+    options.source_levels = levels.levels;
+    options.source_levels_near_lamps = levels.near_lamps;
     options.gather_runs = !args->no_gather;
     options.gather_tolerance = args->gather_tolerance;
     options.gather_through_links = args->gather_sources == "links";
@@ -245,7 +246,7 @@ void add_sweep_command(CLI::App& app) {
                                        {"--aeps", args->aeps}})
         if (!text.empty()) o << " " << name << " " << text;
       if (args->visibility_samples > 0) o << " --visibility-samples " << args->visibility_samples;
-      if (args->source_levels > 0) o << " --source-levels " << args->source_levels;
+      if (args->source_levels != "0") o << " --source-levels " << args->source_levels;
       if (args->no_gather) o << " --no-gather";
       if (cmd->count("--gather-tolerance")) o << " --gather-tolerance " << args->gather_tolerance;
       if (cmd->count("--gather-sources")) o << " --gather-sources " << args->gather_sources;

@@ -81,6 +81,7 @@ const BadInput kCases[] = {
      "solve " + kScene + " --source-levels some --report {d}/r.json",
      "--source-levels"},
     {"solve_too_many_source_levels", {}, "solve " + kScene + " --source-levels 7 --report {d}/r.json", "--source-levels"},
+    {"sweep_unknown_source_levels", {}, "sweep " + kScene + " --source-levels 2x --out {d}/sw", "--source-levels"},
     {"solve_zero_visibility_samples",
      {},
      "solve " + kScene + " --visibility-samples 0 --out {d}/s.ply",

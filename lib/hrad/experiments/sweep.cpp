@@ -35,7 +35,10 @@ SolveOptions base_options(Method method, const SweepOptions& sweep) {
   o.threads = sweep.threads;
   o.progress = sweep.solve_progress;
   if (sweep.visibility_samples > 0) o.visibility_samples = sweep.visibility_samples;
-  if (method == Method::kHierarchical) o.source_levels = sweep.source_levels;
+  if (method == Method::kHierarchical) {
+    o.source_levels = sweep.source_levels;
+    o.source_levels_near_lamps = sweep.source_levels_near_lamps;
+  }
   return o;
 }
 

@@ -100,6 +100,8 @@ struct SweepOptions {
   int visibility_samples = 0;
   /// The hierarchical runs' --source-levels (SolveOptions::source_levels).
   int source_levels = 0;
+  /// ... near bright lamps only (SolveOptions::source_levels_near_lamps; `--source-levels auto`).
+  bool source_levels_near_lamps = false;
   /// Judge runs against the reference solution's final gather at the samples
   /// (experiments/final_gather.h) instead of its own field.
   bool final_gather = true;

@@ -1,5 +1,6 @@
 #include "hrad/solvers/solve.h"
 
+#include <charconv>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -25,6 +26,15 @@ void check_positive(const char* option, double value) {
 }
 
 }  // namespace
+
+SourceLevels parse_source_levels(const std::string& text) {
+  if (text == "auto") return {kAutoSourceLevels, true};
+  int n = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (ec != std::errc() || end != text.data() + text.size() || n < 0 || n > kMaxSourceLevels)
+    throw Error(fmt::format("--source-levels must be auto or an integer in [0, {}], got '{}'", kMaxSourceLevels, text));
+  return {n, false};
+}
 
 void validate_options(const SolveOptions& o) {
   switch (o.method) {

@@ -67,6 +67,14 @@ inline constexpr int kMaxSourceLevels = 6;
 /// `--source-levels auto`: this many levels, near bright emitters only (SolveOptions).
 inline constexpr int kAutoSourceLevels = 2;
 
+/// `--source-levels` as given: `auto`, or an integer in [0, kMaxSourceLevels].
+struct SourceLevels {
+  int levels = 0;
+  bool near_lamps = false;
+};
+/// Reads `--source-levels TEXT`; anything else is an Error naming the option.
+SourceLevels parse_source_levels(const std::string& text);
+
 struct SolveOptions {
   Method method = Method::kHierarchical;
   /// Full matrix and substructuring: largest element area (scene units squared); 0 = automatic:
