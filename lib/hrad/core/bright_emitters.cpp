@@ -17,21 +17,27 @@ struct Box {
 
 }  // namespace
 
-double closed_room_radiosity(const Scene& scene) {
-  double area = 0.0, power = 0.0, reflected = 0.0;
+Rgb mean_radiosity(const Scene& scene) {
+  Rgb emitted = Rgb::Zero(), reflectance = Rgb::Zero();
+  double area = 0.0;
   for (const Patch& p : scene.patches) {
-    const Material& m = scene.materials[static_cast<std::size_t>(p.material)];
-    area += p.area, power += p.area * m.emission.sum(), reflected += p.area * m.reflectance.mean();
+    const Material& m = scene.material_of(p);
+    emitted += p.area * m.emission.abs();  // a fixed net flux (radiant exchange) may be negative
+    reflectance += p.area * m.reflectance;
+    area += p.area;
   }
-  if (!(area > 0.0)) return 0.0;
-  return power / area / std::max(1.0 - reflected / area, 1e-3);
+  if (area <= 0.0) return Rgb::Zero();
+  // Rhobar capped: a lossless scene with light in it has no finite mean, and the weights only need
+  // to rank sources.
+  const Rgb rho_bar = (reflectance / area).min(0.999);
+  return (emitted / area) / (1.0 - rho_bar);
 }
 
 std::vector<int> bright_emitters(const Scene& scene) {
-  const double mean = closed_room_radiosity(scene);
+  const double mean = mean_radiosity(scene).sum();
   std::vector<int> out;
   for (std::size_t i = 0; i < scene.patches.size(); ++i) {
-    const Material& m = scene.materials[static_cast<std::size_t>(scene.patches[i].material)];
+    const Material& m = scene.material_of(scene.patches[i]);
     if (m.is_emitter() && m.emission.sum() > mean) out.push_back(static_cast<int>(i));
   }
   return out;

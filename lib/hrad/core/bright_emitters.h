@@ -12,12 +12,12 @@ namespace hrad {
 /// A lamp's near field: patches within this many times its diameter of it (bounding boxes).
 inline constexpr double kLampReach = 1.0;
 
-/// The mean radiosity of a closed room of the scene's area-mean emission and reflectance,
-/// E_mean / (1 - rho_mean), channels summed (the reflectance's mean over them).
-double closed_room_radiosity(const Scene& scene);
+/// B_mean = Ebar / (1 - rhobar) per channel, the closed-room radiosity of the scene's area-mean
+/// emission and reflectance (rhobar at most 0.999); 0 when nothing emits.
+Rgb mean_radiosity(const Scene& scene);
 
-/// The patches whose emission (channels summed) exceeds closed_room_radiosity(): none in a furnace,
-/// where every face emits alike.
+/// The patches whose emission exceeds mean_radiosity() (channels summed): none in a furnace, where
+/// every face emits alike.
 std::vector<int> bright_emitters(const Scene& scene);
 
 /// For each patch, the bright emitters (patch indices, ascending) whose bounding box, grown on every

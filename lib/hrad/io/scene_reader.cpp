@@ -14,10 +14,9 @@
 #include "hrad/core/memory.h"
 
 #include "hrad/core/error.h"
+#include "hrad/io/emitter_planes.h"
 #include "hrad/io/flush_faces.h"
 #include "hrad/io/near_faces.h"
-#include "hrad/io/emitter_planes.h"
-
 #include "hrad/io/input_file.h"
 #include "hrad/io/ply_file.h"
 #include "hrad/io/scene_directives.h"

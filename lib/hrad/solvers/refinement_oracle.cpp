@@ -779,22 +779,6 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
     c.decision = p_can ? Decision::kSplitP : Decision::kLink;
 }
 
-Rgb mean_radiosity(const Scene& scene) {
-  Rgb emitted = Rgb::Zero(), reflectance = Rgb::Zero();
-  double area = 0.0;
-  for (const Patch& p : scene.patches) {
-    const Material& m = scene.material_of(p);
-    emitted += p.area * m.emission.abs();  // a fixed net flux (radiant exchange) may be negative
-    reflectance += p.area * m.reflectance;
-    area += p.area;
-  }
-  if (area <= 0.0) return Rgb::Zero();
-  // Rhobar capped: a lossless scene with light in it has no finite mean, and the weights only need
-  // to rank sources.
-  const Rgb rho_bar = (reflectance / area).min(0.999);
-  return (emitted / area) / (1.0 - rho_bar);
-}
-
 std::vector<double> source_weights(const Scene& scene, int channels) {
   std::vector<double> weights(scene.patches.size(), 1.0);
   const Rgb b_mean = mean_radiosity(scene);

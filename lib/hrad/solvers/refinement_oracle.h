@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "hrad/core/bright_emitters.h"
 #include "hrad/mesh/element_hierarchy.h"
 #include "hrad/solvers/cluster_transfer.h"
 #include "hrad/solvers/cluster_tree.h"
@@ -218,7 +219,5 @@ inline constexpr double kBrighterThanWeighed = 8.0;
 /// solving as E_q + rho_q B_mean. In a closed room with uniform E and rho every weight is 1 (plain
 /// feps). All 1 when nothing emits. Only `channels` channels count (1 or 3).
 std::vector<double> source_weights(const Scene& scene, int channels);
-/// B_mean = Ebar / (1 - rhobar) per channel (rhobar at most 0.999); 0 when nothing emits.
-Rgb mean_radiosity(const Scene& scene);
 
 }  // namespace hrad
