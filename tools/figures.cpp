@@ -12,7 +12,7 @@
 //                     full matrix's k^2 pairs, substructuring's 2k factors, HR's links at the same
 //                     finest element size
 //   fig4_nbody        Barnes-Hut interactions per body against n for several theta, and n - 1
-//   fig5_convergence  largest relative change per iteration on the Cornell box: full (Jacobi),
+//   fig5_convergence  relative change per iteration (the stopping measure) on the Cornell box: full (Jacobi),
 //                     substructuring, hierarchical
 //   fig6_equal_time   the Cornell box by each method at about the hierarchical solve's time, with
 //                     false-colour error images against a finer full-matrix LU reference

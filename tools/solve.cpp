@@ -19,10 +19,10 @@
 //                          and its reflected radiosity may vary there: contacts, the inside of a
 //                          lamp's housing (default 0: --aeps bounds every split); auto: 2 levels on
 //                          the patches near bright lamps only (core/bright_emitters.h)
-//   --tolerance T          iterations stop when the estimated error of the answer, relative to the
-//                          largest reflected radiosity, is below T: the last change times q / (1 - q),
-//                          q the contraction per iteration estimated from successive changes
-//                          (default 1e-6)
+//   --tolerance T          iterations stop when the estimated error of the answer is below T,
+//                          relative both to the largest reflected radiosity and to the reflected
+//                          power: the last change times q / (1 - q), q the contraction per
+//                          iteration estimated from successive changes (default 1e-6)
 //   --max-iterations N     iteration limit (default 10000); reaching it is a status, not an error
 //   --linear-solver S      full: lu (default, direct), jacobi or gauss_seidel; with --basis linear
 //                          jacobi (the default there, the only one offered)
@@ -129,7 +129,7 @@ void add_solve_command(CLI::App& app) {
                   "(default 0)");
   cmd->add_option(
       "--tolerance", args->tolerance,
-      "Stop when the estimated relative error (last change x q/(1-q), q the contraction) is below this (default 1e-6)");
+      "Stop when the estimated relative error (last change x q/(1-q), q the contraction) of the brightest leaf and of the reflected power is below this (default 1e-6)");
   cmd->add_option("--max-iterations", args->max_iterations, "Iteration limit (default 10000)");
   auto* linear_solver = cmd->add_option("--linear-solver", args->linear_solver,
                                         "Full: lu | jacobi | gauss_seidel (default lu; with --basis linear jacobi)");

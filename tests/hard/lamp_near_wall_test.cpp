@@ -120,5 +120,40 @@ TEST(LampNearWall, HierarchicalRadiosityBalancesTheLampFacingTheWall) {
   }
 }
 
+// Guarantee: the stopping test bounds the reflected power of the answer, not only its brightest
+// leaf. With sources split below aeps (--source-levels 2), the wall's leaves under the lamp reflect
+// ~1000x more than the other walls; stopping when the largest change was 1e-6 of the largest
+// reflected radiosity left the reflected power 3.6e-4 short of the converged answer (and the
+// balance 5e-4 off). At the default tolerance the reflected power is within 10x the tolerance of a
+// solve to 1e-12 on the same links.
+TEST(LampNearWall, TheStoppingTestBoundsTheReflectedPowerBesideABrightFootprint) {
+  const Scene s = lamp_room(1e-3, true);
+  auto reflected_power = [&](double tolerance, SolveSummary* sum) {
+    SolveOptions o;
+    o.method = Method::kHierarchical;
+    o.source_levels = 2;
+    o.tolerance = tolerance;
+    Solution sol;
+    *sum = solve(s, o, &sol);
+    double power = 0.0, brightest = 0.0, walls = 0.0;
+    for (std::size_t p = 0; p < s.patches.size(); ++p)
+      power += s.patches[p].area * (sol.patch_radiosity[p][0] - s.material_of(s.patches[p]).emission[0]);
+    for (std::size_t f = 0; f < sol.faces.size(); ++f) {
+      const Patch& patch = s.patches[static_cast<std::size_t>(sol.face_patch[f])];
+      const double b = sol.face_radiosity[f][0] - s.material_of(patch).emission[0];
+      brightest = std::max(brightest, b);
+      if (patch.material == 0 && patch.normal.x() < 0.5) walls = std::max(walls, b);
+    }
+    EXPECT_GT(brightest, 300.0 * walls);  // the case: a footprint far brighter than the room
+    return power;
+  };
+  SolveSummary loose, tight;
+  const double p_loose = reflected_power(1e-6, &loose), p_tight = reflected_power(1e-12, &tight);
+  ASSERT_EQ(loose.termination, Termination::kConverged) << loose.message;
+  ASSERT_EQ(tight.termination, Termination::kConverged) << tight.message;
+  ASSERT_EQ(loose.elements, tight.elements);  // the same refinement
+  EXPECT_LT(std::abs(p_loose - p_tight) / p_tight, 1e-5);
+}
+
 }  // namespace
 }  // namespace hrad

@@ -14,7 +14,7 @@ for method in ("full", "substructure", "hierarchical"):
                 label=labels[method])
 ax.set_yscale("log")
 ax.set_xlabel("iteration")
-ax.set_ylabel("largest relative change of any element")
+ax.set_ylabel("relative change (largest element, reflected power)")
 ax.set_title("Convergence on the Cornell box")
 ax.grid(True, which="both", alpha=0.3)
 ax.legend(fontsize=8)

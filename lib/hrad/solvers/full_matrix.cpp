@@ -174,15 +174,21 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
       }
       case LinearSolver::kGaussSeidel: {
         while (true) {
-          double change = 0.0, largest = 0.0;
-          for (int i = 0; i < n; ++i)
+          LeafChange change;
+          for (int i = 0; i < n; ++i) {
+            LeafChange leaf;
             for (int c = 0; c < channels; ++c) {
               const double value = e(i, c) + rho(i, c) * f.row(i).dot(b.col(c));
-              change = std::max(change, std::abs(value - b(i, c)));
-              largest = std::max(largest, std::abs(value - e(i, c)));
+              leaf.change = std::max(leaf.change, std::abs(value - b(i, c)));
+              leaf.reflected = std::max(leaf.reflected, std::abs(value - e(i, c)));
               b(i, c) = value;
             }
-          if (ctx.record_iteration(stopping_change(change, largest))) break;
+            const double area = h.node(leaves[static_cast<std::size_t>(i)]).area;
+            leaf.power_change = area * leaf.change;
+            leaf.reflected_power = area * leaf.reflected;
+            change.add(leaf);
+          }
+          if (ctx.record_iteration(stopping_change(change))) break;
         }
         break;
       }

@@ -13,7 +13,7 @@ bool iterate(SolverContext& ctx, const PushPull& push_pull, std::span<const Link
     field.clear_gathered();
     for (const LinkOperator* op : operators) op->gather(field);
     const LeafChange c = push_pull.push_pull(field);
-    if (ctx.record_iteration(stopping_change(c.change, c.reflected))) break;
+    if (ctx.record_iteration(stopping_change(c))) break;
     double largest = 0.0;
     for (std::size_t p = 0; p < ctx.scene().patches.size(); ++p)
       largest = std::max(largest, field.radiosity[p].maxCoeff());
@@ -27,6 +27,15 @@ bool iterate(SolverContext& ctx, const PushPull& push_pull, std::span<const Link
     }
   }
   return ctx.summary().termination == Termination::kConverged;
+}
+
+double stopping_change(const LeafChange& c) {
+  if (!std::isfinite(c.change) || !std::isfinite(c.reflected) || !std::isfinite(c.power_change) ||
+      !std::isfinite(c.reflected_power))
+    return NAN;
+  const double largest = c.reflected > 0.0 ? c.change / c.reflected : c.change;
+  const double power = c.reflected_power > 0.0 ? c.power_change / c.reflected_power : c.power_change;
+  return std::max(largest, power);
 }
 
 double radiosity_bound(const Scene& scene) {

@@ -150,10 +150,15 @@ Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& 
     Rgb mean = Rgb::Zero();
     for (int k = 0; k < points; ++k) {
       mean += mean_weights_[i][k] * b[k];
+      double moved = 0.0, reflected = 0.0;
       for (int c = 0; c < channels_; ++c) {
-        change->change = std::max(change->change, std::abs(b[k][c] - field.point_radiosity[i][k][c]));
-        change->reflected = std::max(change->reflected, std::abs(b[k][c] - n.emission[c]));
+        moved = std::max(moved, std::abs(b[k][c] - field.point_radiosity[i][k][c]));
+        reflected = std::max(reflected, std::abs(b[k][c] - n.emission[c]));
       }
+      change->change = std::max(change->change, moved);
+      change->reflected = std::max(change->reflected, reflected);
+      change->power_change += n.area * mean_weights_[i][k] * moved;
+      change->reflected_power += n.area * mean_weights_[i][k] * reflected;
     }
     Rgb h = Rgb::Zero();
     for (int k = 0; k < points; ++k) h += mean_weights_[i][k] * total[k];
@@ -169,10 +174,15 @@ Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& 
     const Rgb b = n.emission + n.reflectance * mean;
     field.leaf_irradiance[i] = mean;
     for (int k = 0; k < 9; ++k) field.point_radiosity[i][k] = n.emission + n.reflectance * total[k];
+    double moved = 0.0, reflected = 0.0;
     for (int c = 0; c < channels_; ++c) {
-      change->change = std::max(change->change, std::abs(b[c] - field.radiosity[i][c]));
-      change->reflected = std::max(change->reflected, std::abs(b[c] - n.emission[c]));
+      moved = std::max(moved, std::abs(b[c] - field.radiosity[i][c]));
+      reflected = std::max(reflected, std::abs(b[c] - n.emission[c]));
     }
+    change->change = std::max(change->change, moved);
+    change->reflected = std::max(change->reflected, reflected);
+    change->power_change += n.area * moved;
+    change->reflected_power += n.area * reflected;
     field.radiosity[i] = b;
     leaf_moments(field, id);
     return b;
@@ -232,10 +242,7 @@ LeafChange PushPull::push_pull(NodeField& field) const {
   });
   pull_clusters(field);
   LeafChange all;
-  for (const LeafChange& c : per_patch) {
-    all.change = std::max(all.change, c.change);
-    all.reflected = std::max(all.reflected, c.reflected);
-  }
+  for (const LeafChange& c : per_patch) all.add(c);
   return all;
 }
 

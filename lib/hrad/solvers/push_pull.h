@@ -12,6 +12,8 @@
 // linear space, and its moments are those of that linear field.
 #pragma once
 
+#include <algorithm>
+
 #include "hrad/core/scene.h"
 #include "hrad/mesh/element_hierarchy.h"
 #include "hrad/solvers/cluster_tree.h"
@@ -21,11 +23,20 @@
 
 namespace hrad {
 
-/// The leaves' largest change of radiosity in one push-pull and their largest reflected radiosity
-/// |B - E| (over the computed channels).
+/// The leaves' change of radiosity in one iteration and their reflected radiosity |B - E| (the
+/// largest over the computed channels), as their largest values and integrated over the leaves'
+/// areas (the reflected power, up to pi).
 struct LeafChange {
   double change = 0.0;
   double reflected = 0.0;
+  double power_change = 0.0;
+  double reflected_power = 0.0;
+  void add(const LeafChange& o) {
+    change = std::max(change, o.change);
+    reflected = std::max(reflected, o.reflected);
+    power_change += o.power_change;
+    reflected_power += o.reflected_power;
+  }
 };
 
 /// A PointValues field over an element of `vertex_count` vertices, split as `kind`, restricted to

@@ -96,11 +96,13 @@ struct SolveOptions {
   /// core/bright_emitters.h) split below aeps, where a lamp's light varies most (its housing, the
   /// walls beside it); elsewhere aeps bounds every split. `--source-levels auto`: kAutoSourceLevels so.
   bool source_levels_near_lamps = false;
-  /// Iterations stop when the estimated error of the returned radiosity, relative to the largest
-  /// reflected radiosity B - E, is below this: the last change of any element's radiosity (any
-  /// channel) times q / (1 - q), q the contraction per iteration estimated from successive changes
-  /// (a geometric tail; see SolverContext::record_iteration()). Relative to B - E rather than B: a
-  /// bright emitter would otherwise stop the iteration before any interreflection.
+  /// Iterations stop when the estimated error of the returned radiosity is below this, relative in
+  /// two measures (stopping_change(), iteration.h): the largest leaf's against the largest reflected
+  /// radiosity B - E, and the reflected power's (the change integrated over the leaves' areas)
+  /// against the reflected power. The error is the last change times q / (1 - q), q the contraction
+  /// per iteration estimated from successive changes (a geometric tail; see
+  /// SolverContext::record_iteration()). Relative to B - E rather than B: a bright emitter would
+  /// otherwise stop the iteration before any interreflection.
   double tolerance = 1e-6;
   /// Iterative methods give up (Termination::kMaxIterations) after this many iterations.
   int max_iterations = 10000;
@@ -165,7 +167,7 @@ struct SolveSummary {
   std::vector<std::pair<std::string, double>> seconds;
   double total_seconds = 0.0;
   Effects effects;  ///< what was simulated and why
-  /// Largest relative change per iteration (see SolveOptions::tolerance), for convergence plots.
+  /// The stopping measure per iteration (stopping_change(); SolveOptions::tolerance), for plots.
   std::vector<double> change_per_iteration;
   std::size_t peak_memory_bytes = 0;  ///< the process's peak resident set (0 if unknown)
   /// Method-specific figures for the report (e.g. "max_area", "patch_area", "shooting_patches").

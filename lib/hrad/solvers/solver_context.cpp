@@ -203,11 +203,6 @@ SolveSummary SolverContext::finish(const ElementHierarchy& hierarchy, std::size_
   return summary_;
 }
 
-double stopping_change(double largest_change, double largest_reflected) {
-  if (!std::isfinite(largest_change) || !std::isfinite(largest_reflected)) return NAN;
-  return largest_reflected > 0.0 ? largest_change / largest_reflected : largest_change;
-}
-
 std::size_t peak_memory_bytes() {
   std::ifstream status("/proc/self/status");
   std::string line;

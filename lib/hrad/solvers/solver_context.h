@@ -126,11 +126,6 @@ class SolverContext {
   std::unique_ptr<ThreadLimit> thread_limit_;
 };
 
-/// The stopping measure of one iteration (SolveOptions::tolerance): `largest_change` of any element's
-/// radiosity divided by `largest_reflected`, the largest |B - E|; the change itself when nothing is
-/// reflected yet; NaN when either is not finite (record_iteration then reports a failure).
-double stopping_change(double largest_change, double largest_reflected);
-
 /// Copies channel 0 into channels 1 and 2 (for gray scenes solved with one channel).
 inline void copy_gray(Rgb& value) { value[1] = value[2] = value[0]; }
 
