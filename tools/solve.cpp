@@ -127,9 +127,9 @@ void add_solve_command(CLI::App& app) {
                   "Hierarchical: levels below --aeps a source may split to where a receiver's kernel peaks over "
                   "part of it (contacts, lamp housings), or auto: 2 levels on the patches near bright lamps only "
                   "(default 0)");
-  cmd->add_option(
-      "--tolerance", args->tolerance,
-      "Stop when the estimated relative error (last change x q/(1-q), q the contraction) of the brightest leaf and of the reflected power is below this (default 1e-6)");
+  cmd->add_option("--tolerance", args->tolerance,
+                  "Stop when the estimated relative error (last change x q/(1-q), q the contraction) of the brightest "
+                  "leaf and of the reflected power is below this (default 1e-6)");
   cmd->add_option("--max-iterations", args->max_iterations, "Iteration limit (default 10000)");
   auto* linear_solver = cmd->add_option("--linear-solver", args->linear_solver,
                                         "Full: lu | jacobi | gauss_seidel (default lu; with --basis linear jacobi)");
