@@ -98,7 +98,6 @@ std::string balance_advice(const SolveSummary& summary) {
                            : "refine (--max-area) or try --kernel analytic";
   if (used.basis == Basis::kLinear)
     advice += "; linear elements do not balance where a source is closer than an element's size: try --basis constant";
-  if (used.source_levels > 0) advice += "; --source-levels loses power beside contacts: try without it";
   return advice;
 }
 

@@ -17,6 +17,7 @@
 #include "hrad/solvers/push_pull.h"
 #include "hrad/solvers/refine.h"
 #include "hrad/solvers/refinement_oracle.h"
+#include "hrad/solvers/send_closure.h"
 #include "hrad/solvers/solved_hierarchy.h"
 #include "hrad/solvers/solver_context.h"
 
@@ -171,7 +172,10 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
         fmt::format("hierarchical: pass {}: {} elements, {} links", passes, h.size(), directed_link_count(links)));
     // A re-refinement that changed nothing leaves the last solution consistent with its links.
     if (passes > 1 && !changed) break;
-    const PushPull push_pull(scene, h, tree.get(), ctx.channels(), options.basis);
+    PushPull push_pull(scene, h, tree.get(), ctx.channels(), options.basis);
+    // Elements split below aeps as sources send as much as the element at aeps above them does
+    // (send_closure.h).
+    if (options.source_levels > 0 && ops.hsa) push_pull.set_send_closure(send_closures(h, *ops.hsa, push_pull, t.aeps));
     NodeField field = push_pull.make_field();
     const std::vector<const LinkOperator*> all = ops.all();
     bool converged = false;

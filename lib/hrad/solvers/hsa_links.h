@@ -36,6 +36,23 @@ class HsaLinks final : public LinkOperator {
   std::uint64_t terms() const override { return 18 * links_.size() + cluster_terms_; }
   std::uint64_t bytes() const override;
 
+  /// The adjoint of the gather over the links between elements: per element (by node id), the
+  /// coefficients d with sum_i d_i m_i the power those links deliver from the element's radiosity
+  /// moments m (what the element sends through them). `received(r, factor)` is a receiver's area
+  /// times the mean over it of a factor field at its points.
+  template <class Received>
+  std::vector<std::array<double, 9>> send_coefficients(Received received) const {
+    std::vector<std::array<double, 9>> d(elements_, std::array<double, 9>{});
+    for (std::size_t r = 0; r < elements_; ++r)
+      for (std::uint64_t k = offsets_[r]; k < offsets_[r + 1]; ++k) {
+        const DirectedLink& l = links_[k];
+        const double exchange = received(static_cast<NodeId>(r), l.factor);
+        std::array<double, 9>& s = d[static_cast<std::size_t>(l.source)];
+        for (int i = 0; i < 9; ++i) s[static_cast<std::size_t>(i)] += exchange * static_cast<double>(l.weight[i]);
+      }
+    return d;
+  }
+
  private:
   struct DirectedLink {
     std::int32_t source;          ///< dense node index

@@ -208,12 +208,24 @@ Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& 
 
 void PushPull::leaf_moments(NodeField& field, NodeId id) const {
   const std::size_t i = static_cast<std::size_t>(id);
+  PointValues& m = field.radiosity_moments[i];
   if (basis_ == Basis::kLinear) {
     const int points = h_.node(id).vertex_count == 4 ? 9 : 7;
-    field.radiosity_moments[i] = point_field_moments(point_weights_[i], points, field.point_radiosity[i]);
-    return;
+    m = point_field_moments(point_weights_[i], points, field.point_radiosity[i]);
+  } else {
+    for (int k = 0; k < 9; ++k) m[k] = basis_integrals_[i][k] * field.radiosity[i];
   }
-  for (int k = 0; k < 9; ++k) field.radiosity_moments[i][k] = basis_integrals_[i][k] * field.radiosity[i];
+  if (send_closure_.empty() || !(send_closure_[i].closed > 0.0) || !(send_closure_[i].sigma > 0.0)) return;
+  // Sent: sum_k d_k m_k; wanted: closed times the power, sum_k m_k (the basis sums to 1). The
+  // difference goes along a uniform field's moments, which send sigma A per unit radiosity.
+  const SendClosure& c = send_closure_[i];
+  Rgb sent = Rgb::Zero(), power = Rgb::Zero();
+  for (int k = 0; k < 9; ++k) {
+    sent += c.coefficients[k] * m[k];
+    power += m[k];
+  }
+  const Rgb move = (c.closed * power - sent) / (c.sigma * h_.node(id).area);
+  for (int k = 0; k < 9; ++k) m[k] += basis_integrals_[i][k] * move;
 }
 
 void PushPull::pull_moments(NodeField& field, NodeId id) const {

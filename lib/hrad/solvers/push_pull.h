@@ -13,6 +13,7 @@
 #pragma once
 
 #include <algorithm>
+#include <utility>
 
 #include "hrad/core/scene.h"
 #include "hrad/mesh/element_hierarchy.h"
@@ -37,6 +38,15 @@ struct LeafChange {
     power_change += o.power_change;
     reflected_power += o.reflected_power;
   }
+};
+
+/// What a leaf sends through the links between elements (send_closure.h), per unit of its
+/// radiosity's moments m: sum_i coefficients_i m_i; per unit radiosity and area, sigma; and what
+/// that should be, `closed` (0: the leaf sends as its moments say).
+struct SendClosure {
+  std::array<double, 9> coefficients{};
+  double sigma = 0.0;
+  double closed = 0.0;
 };
 
 /// A PointValues field over an element of `vertex_count` vertices, split as `kind`, restricted to
@@ -65,6 +75,19 @@ class PushPull {
   /// and the clusters' mean radiosity into `cluster_radiosity` (when not null).
   void store(const NodeField& field, ElementHierarchy& hierarchy, std::vector<Rgb>* cluster_radiosity) const;
 
+  /// Per element (by node id; empty: none): the closure of what a part below aeps sends through the
+  /// links between elements (send_closure.h); its radiosity's moments are moved along a uniform
+  /// field's so that it sends `closed` times its power. Its radiosity, and what it sends through
+  /// cluster links, stay as they are.
+  void set_send_closure(std::vector<SendClosure> closure) { send_closure_ = std::move(closure); }
+  /// An element's simpson_points() weights over its area: the mean of a PointValues field is
+  /// sum_k w_k v_k.
+  const std::array<double, 9>& mean_weights(NodeId id) const { return mean_weights_[static_cast<std::size_t>(id)]; }
+  /// The integrals over an element of its basis functions (link_operator.h NodeField::radiosity_moments).
+  const std::array<double, 9>& basis_integrals_of(NodeId id) const {
+    return basis_integrals_[static_cast<std::size_t>(id)];
+  }
+
  private:
   Rgb push_pull_element(NodeField& field, NodeId id, const PointValues& down, LeafChange* change) const;
   Rgb pull_element(NodeField& field, NodeId id) const;
@@ -85,6 +108,7 @@ class PushPull {
   /// Per element: the integrals of its basis functions (the Simpson weights of a quad; for a
   /// triangle's quadratic basis, 0 at the vertices and a third of the area at the midpoints).
   std::vector<std::array<double, 9>> basis_integrals_;
+  std::vector<SendClosure> send_closure_;
 };
 
 }  // namespace hrad

@@ -1,0 +1,71 @@
+#include "hrad/solvers/send_closure.h"
+
+#include <array>
+#include <cstddef>
+
+namespace hrad {
+
+std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks& links, const PushPull& push_pull,
+                                       double aeps) {
+  const std::size_t n = h.size();
+  // The element that cannot split above each node (kNoNode where none is above or the node's own
+  // area still allows a split): children have larger ids than their parent.
+  std::vector<NodeId> block(n, kNoNode);
+  bool below = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const ElementNode& e = h.node(static_cast<NodeId>(i));
+    if (e.parent == kNoNode) continue;
+    const std::size_t parent = static_cast<std::size_t>(e.parent);
+    if (block[parent] != kNoNode) {
+      block[i] = block[parent];
+    } else if (h.node(e.parent).area * 0.25 < aeps) {
+      block[i] = e.parent;
+    }
+    below = below || block[i] != kNoNode;
+  }
+  if (!below) return {};
+
+  std::vector<std::array<double, 9>> d = links.send_coefficients([&](NodeId r, const std::array<float, 9>& factor) {
+    const std::array<double, 9>& w = push_pull.mean_weights(r);
+    double mean = 0.0;
+    for (int k = 0; k < 9; ++k) mean += w[static_cast<std::size_t>(k)] * static_cast<double>(factor[k]);
+    return h.node(r).area * mean;
+  });
+  // Down the tree by the push's restriction (the adjoint of the moments' pull), then per leaf what
+  // a unit radiosity sends per unit area: sum_i d_i integral(phi_i) / A.
+  std::vector<double> sigma(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ElementNode& e = h.node(static_cast<NodeId>(i));
+    if (e.is_leaf()) {
+      const std::array<double, 9>& integral = push_pull.basis_integrals_of(static_cast<NodeId>(i));
+      const int functions = e.vertex_count == 4 ? 9 : 6;
+      double s = 0.0;
+      for (int k = 0; k < functions; ++k)
+        s += d[i][static_cast<std::size_t>(k)] * integral[static_cast<std::size_t>(k)];
+      sigma[i] = s / e.area;
+      continue;
+    }
+    for (int k = 0; k < 4; ++k) {
+      const std::array<double, 9> part = restrict_to_child(d[i], e.vertex_count, e.split, k);
+      std::array<double, 9>& child = d[static_cast<std::size_t>(e.first_child + k)];
+      for (int j = 0; j < 9; ++j) child[static_cast<std::size_t>(j)] += part[static_cast<std::size_t>(j)];
+    }
+  }
+  // Each block's area mean of sigma over its leaves.
+  std::vector<double> sum(n, 0.0), area(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ElementNode& e = h.node(static_cast<NodeId>(i));
+    if (!e.is_leaf() || block[i] == kNoNode) continue;
+    sum[static_cast<std::size_t>(block[i])] += e.area * sigma[i];
+    area[static_cast<std::size_t>(block[i])] += e.area;
+  }
+  std::vector<SendClosure> closure(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!h.node(static_cast<NodeId>(i)).is_leaf() || block[i] == kNoNode) continue;
+    const std::size_t b = static_cast<std::size_t>(block[i]);
+    closure[i] = {d[i], sigma[i], sum[b] / area[b]};
+  }
+  return closure;
+}
+
+}  // namespace hrad
