@@ -101,6 +101,39 @@ std::uint64_t HsaLinks::bytes() const {
          carried_.capacity() * sizeof(Rgb) + weights_.capacity() * sizeof(float) + position_.capacity() * sizeof(int);
 }
 
+std::vector<double> HsaLinks::cluster_sends() const {
+  std::vector<double> out(elements_, 0.0);
+  const std::size_t n = cluster_offsets_.size() - 1;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint64_t k = cluster_offsets_[i]; k < cluster_offsets_[i + 1]; ++k) {
+      const ClusterLink& l = cluster_links_[k];
+      const std::size_t source = static_cast<std::size_t>(l.source);
+      // What the receiver gets per unit of shown(): A_R times the factor for an element receiver;
+      // for a cluster receiver the factor times W = sum_j A_j q_j, shared among its patches.
+      double delivered = 0.0;
+      if (i < elements_) {
+        delivered = h_.node(static_cast<NodeId>(i)).area * static_cast<double>(l.factor);
+      } else {
+        const float* g = weights_.data() + l.receiver_q;
+        double w = 0.0;
+        for (const int patch : tree_->patches(static_cast<int>(i - elements_)))
+          w += scene_.patches[static_cast<std::size_t>(patch)].area * static_cast<double>(*g++);
+        delivered = static_cast<double>(l.factor) * w;
+      }
+      if (source < elements_) {
+        // shown() = B of the element; per unit of its area.
+        out[source] += delivered / h_.node(static_cast<NodeId>(source)).area;
+        continue;
+      }
+      const float* q = weights_.data() + l.source_q;
+      for (const int patch : tree_->patches(static_cast<int>(source - elements_))) {
+        const double w = static_cast<double>(*q++);
+        if (w > 0.0) out[static_cast<std::size_t>(h_.root(patch))] += delivered * w;
+      }
+    }
+  return out;
+}
+
 Rgb HsaLinks::shown(const NodeField& field, std::uint64_t k) const {
   const ClusterLink& l = cluster_links_[k];
   const std::size_t source = static_cast<std::size_t>(l.source);

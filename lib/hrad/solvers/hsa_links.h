@@ -52,6 +52,10 @@ class HsaLinks final : public LinkOperator {
       }
     return d;
   }
+  /// The same for the links with a cluster end, which read a source element's (or a cluster
+  /// source's patches') mean radiosity: per element (by node id), what its uniform unit radiosity
+  /// sends through them per unit of its area (the patches of a cluster source at their roots).
+  std::vector<double> cluster_sends() const;
 
  private:
   struct DirectedLink {

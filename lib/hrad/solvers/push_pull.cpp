@@ -215,8 +215,8 @@ void PushPull::leaf_moments(NodeField& field, NodeId id) const {
   } else {
     for (int k = 0; k < 9; ++k) m[k] = basis_integrals_[i][k] * field.radiosity[i];
   }
-  if (send_closure_.empty() || !(send_closure_[i].closed > 0.0) || !(send_closure_[i].sigma > 0.0)) return;
-  // Sent: sum_k d_k m_k; wanted: closed times the power, sum_k m_k (the basis sums to 1). The
+  if (send_closure_.empty() || !(send_closure_[i].sigma > 0.0)) return;
+  // Sent: sum_k d_k m_k; wanted: `closed` times the power, sum_k m_k (the basis sums to 1). The
   // difference goes along a uniform field's moments, which send sigma A per unit radiosity.
   const SendClosure& c = send_closure_[i];
   Rgb sent = Rgb::Zero(), power = Rgb::Zero();

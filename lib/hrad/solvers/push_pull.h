@@ -40,9 +40,9 @@ struct LeafChange {
   }
 };
 
-/// What a leaf sends through the links between elements (send_closure.h), per unit of its
-/// radiosity's moments m: sum_i coefficients_i m_i; per unit radiosity and area, sigma; and what
-/// that should be, `closed` (0: the leaf sends as its moments say).
+/// What a part below aeps sends through the links between elements (send_closure.h), per unit of
+/// its radiosity's moments m: sum_i coefficients_i m_i; per unit radiosity and area, sigma (0: the
+/// part sends as its moments say); and what that should be, `closed`.
 struct SendClosure {
   std::array<double, 9> coefficients{};
   double sigma = 0.0;
@@ -77,8 +77,8 @@ class PushPull {
 
   /// Per element (by node id; empty: none): the closure of what a part below aeps sends through the
   /// links between elements (send_closure.h); its radiosity's moments are moved along a uniform
-  /// field's so that it sends `closed` times its power. Its radiosity, and what it sends through
-  /// cluster links, stay as they are.
+  /// field's so that it sends `closed` times its power through them. Its radiosity, and what it
+  /// sends through cluster links, stay as they are.
   void set_send_closure(std::vector<SendClosure> closure) { send_closure_ = std::move(closure); }
   /// An element's simpson_points() weights over its area: the mean of a PointValues field is
   /// sum_k w_k v_k.

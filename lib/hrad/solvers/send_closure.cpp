@@ -31,18 +31,17 @@ std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks
     for (int k = 0; k < 9; ++k) mean += w[static_cast<std::size_t>(k)] * static_cast<double>(factor[k]);
     return h.node(r).area * mean;
   });
-  // Down the tree by the push's restriction (the adjoint of the moments' pull), then per leaf what
-  // a unit radiosity sends per unit area: sum_i d_i integral(phi_i) / A.
+  // Down the tree by the push's restriction (the adjoint of the moments' pull): d[i] becomes what
+  // the links at i and above it take from i's moments. Per leaf, what a unit radiosity sends per
+  // unit area: sum_i d_i integral(phi_i) / A.
   std::vector<double> sigma(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const ElementNode& e = h.node(static_cast<NodeId>(i));
     if (e.is_leaf()) {
       const std::array<double, 9>& integral = push_pull.basis_integrals_of(static_cast<NodeId>(i));
       const int functions = e.vertex_count == 4 ? 9 : 6;
-      double s = 0.0;
       for (int k = 0; k < functions; ++k)
-        s += d[i][static_cast<std::size_t>(k)] * integral[static_cast<std::size_t>(k)];
-      sigma[i] = s / e.area;
+        sigma[i] += d[i][static_cast<std::size_t>(k)] * integral[static_cast<std::size_t>(k)] / e.area;
       continue;
     }
     for (int k = 0; k < 4; ++k) {
@@ -51,18 +50,26 @@ std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks
       for (int j = 0; j < 9; ++j) child[static_cast<std::size_t>(j)] += part[static_cast<std::size_t>(j)];
     }
   }
-  // Each block's area mean of sigma over its leaves.
-  std::vector<double> sum(n, 0.0), area(n, 0.0);
+  // What the links with a cluster end take from a uniform radiosity, per unit area, down the tree.
+  std::vector<double> clustered = links.cluster_sends();
+  for (std::size_t i = 0; i < n; ++i) {
+    const ElementNode& e = h.node(static_cast<NodeId>(i));
+    if (e.parent != kNoNode) clustered[i] += clustered[static_cast<std::size_t>(e.parent)];
+  }
+  // Each block's area mean of sigma over its leaves, and of the whole closure.
+  std::vector<double> sum(n, 0.0), area(n, 0.0), whole(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const ElementNode& e = h.node(static_cast<NodeId>(i));
     if (!e.is_leaf() || block[i] == kNoNode) continue;
     sum[static_cast<std::size_t>(block[i])] += e.area * sigma[i];
+    whole[static_cast<std::size_t>(block[i])] += e.area * (sigma[i] + clustered[i]);
     area[static_cast<std::size_t>(block[i])] += e.area;
   }
   std::vector<SendClosure> closure(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (!h.node(static_cast<NodeId>(i)).is_leaf() || block[i] == kNoNode) continue;
     const std::size_t b = static_cast<std::size_t>(block[i]);
+    if (whole[b] < kClosedBlock * area[b]) continue;  // light leaves it: its parts' closures may differ
     closure[i] = {d[i], sigma[i], sum[b] / area[b]};
   }
   return closure;
