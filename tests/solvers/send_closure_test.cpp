@@ -51,7 +51,7 @@ std::vector<SendClosure> closures_after_solve(const Scene& s, SolvedHierarchy* k
   const HsaLinks links(kept->links, *kept->hierarchy, kept->tree.get(), geometry);
   const PushPull push_pull(s, *kept->hierarchy, kept->tree.get(), 1, Basis::kConstant);
   if (aeps != nullptr) *aeps = sum.used.aeps;
-  return send_closures(*kept->hierarchy, links, push_pull, sum.used.aeps);
+  return send_closures(*kept->hierarchy, links, push_pull, sum.used.aeps, false);
 }
 
 // Guarantee: in a closed room the parts below aeps are closed to their element's mean of what a

@@ -175,7 +175,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     PushPull push_pull(scene, h, tree.get(), ctx.channels(), options.basis);
     // Elements split below aeps as sources send as much as the element at aeps above them does
     // (send_closure.h).
-    if (options.source_levels > 0 && ops.hsa) push_pull.set_send_closure(send_closures(h, *ops.hsa, push_pull, t.aeps));
+    if ((options.source_levels > 0 || options.basis == Basis::kLinear) && ops.hsa)
+      push_pull.set_send_closure(send_closures(h, *ops.hsa, push_pull, t.aeps, options.basis == Basis::kLinear));
     NodeField field = push_pull.make_field();
     const std::vector<const LinkOperator*> all = ops.all();
     bool converged = false;

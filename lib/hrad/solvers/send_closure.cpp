@@ -6,7 +6,7 @@
 namespace hrad {
 
 std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks& links, const PushPull& push_pull,
-                                       double aeps) {
+                                       double aeps, bool linear) {
   const std::size_t n = h.size();
   // The element that cannot split above each node (kNoNode where none is above or the node's own
   // area still allows a split): children have larger ids than their parent.
@@ -23,7 +23,7 @@ std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks
     }
     below = below || block[i] != kNoNode;
   }
-  if (!below) return {};
+  if (!below && !linear) return {};
 
   std::vector<std::array<double, 9>> d = links.send_coefficients([&](NodeId r, const std::array<float, 9>& factor) {
     const std::array<double, 9>& w = push_pull.mean_weights(r);
@@ -67,10 +67,15 @@ std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks
   }
   std::vector<SendClosure> closure(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (!h.node(static_cast<NodeId>(i)).is_leaf() || block[i] == kNoNode) continue;
+    if (!h.node(static_cast<NodeId>(i)).is_leaf()) continue;
     const std::size_t b = static_cast<std::size_t>(block[i]);
-    if (whole[b] < kClosedBlock * area[b]) continue;  // light leaves it: its parts' closures may differ
-    closure[i] = {d[i], sigma[i], sum[b] / area[b]};
+    if (block[i] != kNoNode && whole[b] >= kClosedBlock * area[b]) {
+      closure[i] = {d[i], sigma[i], sum[b] / area[b]};
+    } else if (linear && sigma[i] + clustered[i] >= kClosedBlock) {
+      // A linear leaf sends its power times what a uniform radiosity on it sends: its slope only
+      // shares that among the links.
+      closure[i] = {d[i], sigma[i], sigma[i]};
+    }
   }
   return closure;
 }

@@ -1,10 +1,10 @@
-// Closure of what elements below --aeps send (--source-levels). Such an element splits for the
-// links that asked for its parts (a source whose radiosity varies where a receiver's kernel peaks);
-// its other links stay at the element at aeps, or above, and reach its parts through their fields
-// over it (push_pull.h), fitted to nine points of a larger element. Those fields do not vary as
-// the parts' own links do: a part whose own link takes much of its hemisphere (beside a contact, a
-// millimetre from a lamp) still sends by the full fields of the others, and the brighter the part
-// the more it sends in all. The closure errors, summed against the parts' radiosities, made light:
+// Closure of what elements send: the parts of an element split below --aeps (--source-levels), and
+// linear leaves. An element at aeps splits for the links that asked for its parts (a source whose
+// radiosity varies where a receiver's kernel peaks); its other links stay at the element, or
+// above, and reach its parts through their fields over it (push_pull.h), fitted to nine points of
+// a larger element. Those fields do not vary as the parts' own links do: a part whose own link
+// takes much of its hemisphere (beside a contact, a millimetre from a lamp) still sends by the full
+// fields of the others, and the brighter the part the more it sends in all. The closure errors, summed against the parts' radiosities, made light:
 // the generated warehouse (hrad scene generate --kind shelves) with `--source-levels auto` gained
 // 2.2e-3 of its emitted power, parts sending up to 16% more than their radiosity.
 //
@@ -22,7 +22,16 @@
 // sending the parts' means instead balanced it but took RenderPark's office2 from 0.81% to 1.48%
 // against the ruler, where this gives 0.70%). Where light leaves the element (its links take less
 // than kClosedBlock of its hemisphere) its parts' closures differ by what each sees of the opening,
-// and they send as before. Receiving is unchanged, and elements at or above aeps send as before.
+// and they send as before. Receiving is unchanged.
+//
+// A linear leaf at or above aeps has the same round trip within itself: what it receives through a
+// link follows the link's field over it, its slope follows, and it sends by the same field, so an
+// error of the field is squared into light (the lamp 1 mm from its wall gained 7.2e-4 of its power
+// with --basis linear, the generated warehouse 8e-4). Where its links take at least kClosedBlock of
+// its hemisphere, so that its closure is 1 at every point, it sends its power times sigma_L, what a
+// uniform radiosity on it sends: the slope shares that among the links but adds none (1e-5 and
+// 2e-6 of the power then). Where light leaves it the closure varies over it (a wall's foot sees
+// the ground, its top the sky) and its slope sends as it says.
 #pragma once
 
 #include <vector>
@@ -42,9 +51,10 @@ namespace hrad {
 inline constexpr double kClosedBlock = 0.9;
 
 /// Per element (node id), what PushPull::set_send_closure() takes: on the leaves below the
-/// elements that cannot split (area / 4 < `aeps`), their coefficients, sigma_L and sigma_bar;
-/// `closed` 0 elsewhere. Empty when no leaf is below them.
+/// elements that cannot split (area / 4 < `aeps`), their coefficients, sigma_L and sigma_bar; with
+/// `linear`, on the other leaves whose links close them, sigma_L as what they should send; `closed`
+/// 0 elsewhere. Empty when there is nothing to close.
 std::vector<SendClosure> send_closures(const ElementHierarchy& hierarchy, const HsaLinks& links,
-                                       const PushPull& push_pull, double aeps);
+                                       const PushPull& push_pull, double aeps, bool linear);
 
 }  // namespace hrad
