@@ -4,9 +4,10 @@
 // above, and reach its parts through their fields over it (push_pull.h), fitted to nine points of
 // a larger element. Those fields do not vary as the parts' own links do: a part whose own link
 // takes much of its hemisphere (beside a contact, a millimetre from a lamp) still sends by the full
-// fields of the others, and the brighter the part the more it sends in all. The closure errors, summed against the parts' radiosities, made light:
-// the generated warehouse (hrad scene generate --kind shelves) with `--source-levels auto` gained
-// 2.2e-3 of its emitted power, parts sending up to 16% more than their radiosity.
+// fields of the others, and the brighter the part the more it sends in all. The closure errors,
+// summed against the parts' radiosities, made light: the generated warehouse (hrad scene generate
+// --kind shelves) with `--source-levels auto` gained 2.2e-3 of its emitted power, parts sending up
+// to 16% more than their radiosity.
 //
 // In a closed room every point's closure is 1, and the mean over an element at aeps of what its
 // parts send per unit radiosity is right (each link's mean factor is; the fields only spread it).
@@ -20,7 +21,7 @@
 // field, and sends its power as closed (its slope against the same fields made light too: the lamp
 // 1 mm from its wall, notebooks_data/scenes/lamp_near_wall.obj, gained 1.6e-3 with --basis linear;
 // sending the parts' means instead balanced it but took RenderPark's office2 from 0.81% to 1.48%
-// against the ruler, where this gives 0.70%). Where light leaves the element (its links take less
+// against the ruler, where this gives 0.72%). Where light leaves the element (its links take less
 // than kClosedBlock of its hemisphere) its parts' closures differ by what each sees of the opening,
 // and they send as before. Receiving is unchanged.
 //
