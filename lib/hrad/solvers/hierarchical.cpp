@@ -173,10 +173,12 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     // A re-refinement that changed nothing leaves the last solution consistent with its links.
     if (passes > 1 && !changed) break;
     PushPull push_pull(scene, h, tree.get(), ctx.channels(), options.basis);
-    // Elements split below aeps as sources send as much as the element at aeps above them does
-    // (send_closure.h).
-    if ((options.source_levels > 0 || options.basis == Basis::kLinear) && ops.hsa)
+    // The parts of elements split below aeps as sources, and linear leaves, send what their links'
+    // closure says (send_closure.h).
+    if ((options.source_levels > 0 || options.basis == Basis::kLinear) && ops.hsa) {
+      auto phase = ctx.phase("closure");
       push_pull.set_send_closure(send_closures(h, *ops.hsa, push_pull, t.aeps, options.basis == Basis::kLinear));
+    }
     NodeField field = push_pull.make_field();
     const std::vector<const LinkOperator*> all = ops.all();
     bool converged = false;

@@ -74,6 +74,7 @@ std::string SolverContext::allocating_in(const std::string& phase) const {
   if (phase == "clusters") return "the cluster tree";
   if (phase == "refine") return "the links of the refinement";
   if (phase == "links") return "the link operators";
+  if (phase == "closure") return "the send closure's coefficients";
   if (phase == "solve")
     return method() == Method::kFull && options_.linear_solver == LinearSolver::kLu ? "the LU factors of the system"
                                                                                     : "the radiosity arrays";
