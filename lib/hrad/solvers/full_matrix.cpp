@@ -176,17 +176,14 @@ SolveSummary solve_full_matrix(const Scene& scene, const SolveOptions& options, 
         while (true) {
           LeafChange change;
           for (int i = 0; i < n; ++i) {
-            LeafChange leaf;
+            double moved = 0.0, reflected = 0.0;
             for (int c = 0; c < channels; ++c) {
               const double value = e(i, c) + rho(i, c) * f.row(i).dot(b.col(c));
-              leaf.change = std::max(leaf.change, std::abs(value - b(i, c)));
-              leaf.reflected = std::max(leaf.reflected, std::abs(value - e(i, c)));
+              moved = std::max(moved, std::abs(value - b(i, c)));
+              reflected = std::max(reflected, std::abs(value - e(i, c)));
               b(i, c) = value;
             }
-            const double area = h.node(leaves[static_cast<std::size_t>(i)]).area;
-            leaf.power_change = area * leaf.change;
-            leaf.reflected_power = area * leaf.reflected;
-            change.add(leaf);
+            change.add_leaf(h.node(leaves[static_cast<std::size_t>(i)]).area, moved, reflected);
           }
           if (ctx.record_iteration(stopping_change(change))) break;
         }

@@ -155,10 +155,7 @@ Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& 
         moved = std::max(moved, std::abs(b[k][c] - field.point_radiosity[i][k][c]));
         reflected = std::max(reflected, std::abs(b[k][c] - n.emission[c]));
       }
-      change->change = std::max(change->change, moved);
-      change->reflected = std::max(change->reflected, reflected);
-      change->power_change += n.area * mean_weights_[i][k] * moved;
-      change->reflected_power += n.area * mean_weights_[i][k] * reflected;
+      change->add_leaf(n.area * mean_weights_[i][k], moved, reflected);
     }
     Rgb h = Rgb::Zero();
     for (int k = 0; k < points; ++k) h += mean_weights_[i][k] * total[k];
@@ -179,10 +176,7 @@ Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& 
       moved = std::max(moved, std::abs(b[c] - field.radiosity[i][c]));
       reflected = std::max(reflected, std::abs(b[c] - n.emission[c]));
     }
-    change->change = std::max(change->change, moved);
-    change->reflected = std::max(change->reflected, reflected);
-    change->power_change += n.area * moved;
-    change->reflected_power += n.area * reflected;
+    change->add_leaf(n.area, moved, reflected);
     field.radiosity[i] = b;
     leaf_moments(field, id);
     return b;

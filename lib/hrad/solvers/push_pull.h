@@ -32,6 +32,14 @@ struct LeafChange {
   double reflected = 0.0;
   double power_change = 0.0;
   double reflected_power = 0.0;
+  /// One leaf (or one point of it, with its share of the leaf's area): how far it moved and what it
+  /// reflects.
+  void add_leaf(double area, double moved, double reflects) {
+    change = std::max(change, moved);
+    reflected = std::max(reflected, reflects);
+    power_change += area * moved;
+    reflected_power += area * reflects;
+  }
   void add(const LeafChange& o) {
     change = std::max(change, o.change);
     reflected = std::max(reflected, o.reflected);
