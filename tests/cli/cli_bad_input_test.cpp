@@ -80,7 +80,10 @@ const BadInput kCases[] = {
      {},
      "solve " + kScene + " --source-levels some --report {d}/r.json",
      "--source-levels"},
-    {"solve_too_many_source_levels", {}, "solve " + kScene + " --source-levels 7 --report {d}/r.json", "--source-levels"},
+    {"solve_too_many_source_levels",
+     {},
+     "solve " + kScene + " --source-levels 7 --report {d}/r.json",
+     "--source-levels"},
     {"sweep_unknown_source_levels", {}, "sweep " + kScene + " --source-levels 2x --out {d}/sw", "--source-levels"},
     {"solve_zero_visibility_samples",
      {},
@@ -363,10 +366,12 @@ TEST(CliOutOfMemory, NamesWhatWasBeingAllocatedAndTheOption) {
                                    "/o.obj --threads 1 --quiet --out " + d + "/s.ply --report " + d + "/r.json",
                                dir);
   EXPECT_EQ(r.exit_code, 1) << r.err;
+  // The reader's warnings (the office's boxes stand a hair above the floor), then one error line.
   const auto lines = r.err_lines();
-  ASSERT_EQ(lines.size(), 1u) << r.err;
-  EXPECT_EQ(lines[0].rfind("hrad: error: out of memory in 'solve' while allocating the ", 0), 0u) << lines[0];
-  EXPECT_NE(lines[0].find(": raise --aeps"), std::string::npos) << lines[0];
+  ASSERT_GE(lines.size(), 1u) << r.err;
+  for (std::size_t i = 0; i + 1 < lines.size(); ++i) EXPECT_NE(lines[i].find(": warning: "), std::string::npos);
+  EXPECT_EQ(lines.back().rfind("hrad: error: out of memory in 'solve' while allocating the ", 0), 0u) << r.err;
+  EXPECT_NE(lines.back().find(": raise --aeps"), std::string::npos) << lines.back();
   EXPECT_EQ(dir.entries(), 2u) << "an output (or temporary) file was left behind";
 }
 

@@ -156,5 +156,33 @@ TEST(CliWarnings, FlushRugIsCutOutOfTheFloorAndPowerBalances) {
   }
 }
 
+TEST(CliWarnings, AFaceJustAboveTheFloorFacingItIsNamedUnlessTheSolveCutsAlongIt) {
+  TempDir dir;
+  dir.write("box.mtl", kMtl);
+  // A box's bottom 1 cm above the floor, facing down: the floor is dark under it and lit around it.
+  const std::string obj =
+      dir.write("bottom.obj", box_obj(false, "Lamp") +
+                                  "o Box\nusemtl Wall\nv 0.500000 0.010000 0.250000\nv 0.500000 0.010000 0.750000\n"
+                                  "v 1.500000 0.010000 0.750000\nv 1.500000 0.010000 0.250000\nf 16 15 14 13\n");
+  const std::string warning =
+      "bottom.obj:18: warning: 1 pair of faces face each other from nearby (first: line 32, 0.01 in front of line 18)";
+  const RunResult plain = run_hrad("solve " + obj + " --quiet --report " + dir.path("r.json"), dir);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.err.find(warning), std::string::npos) << plain.err;
+  EXPECT_NE(plain.err.find("--cut-near-faces cuts along the outline"), std::string::npos) << plain.err;
+  const nlohmann::json report = nlohmann::json::parse(slurp(dir.path("r.json")));
+  EXPECT_NE(report["warnings"].dump().find("face each other from nearby"), std::string::npos);
+  const RunResult cut = run_hrad("solve " + obj + " --quiet --cut-near-faces --report " + dir.path("c.json"), dir);
+  ASSERT_EQ(cut.exit_code, 0) << cut.err;
+  EXPECT_EQ(cut.err.find("from nearby"), std::string::npos) << cut.err;
+  // Lifted to 0.2 (more than a tenth of the bottom's diameter 1.1): nothing to name.
+  std::string far = slurp(obj);
+  for (std::size_t at = far.find("0.010000"); at != std::string::npos; at = far.find("0.010000"))
+    far.replace(at, 8, "0.200000");
+  const RunResult lifted = run_hrad("solve " + dir.write("far.obj", far) + " --quiet", dir);
+  ASSERT_EQ(lifted.exit_code, 0) << lifted.err;
+  EXPECT_EQ(lifted.err.find("from nearby"), std::string::npos) << lifted.err;
+}
+
 }  // namespace
 }  // namespace hrad::test

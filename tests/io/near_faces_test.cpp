@@ -54,5 +54,39 @@ TEST(NearFaces, TheFloorIsCutAlongTheOutlineOfAFaceJustAboveIt) {
   EXPECT_GT(floor_and_quad(dir, 0.1, true, true).patches.size(), 2u);  // 0.1 <= 0.141
 }
 
+TEST(NearFaces, FindingNamesThePairsThatWouldSplitAFaceNotThoseThatEncloseIt) {
+  test::TempDir dir;
+  // The box's bottom 1 cm above the floor: two pairs (each within a tenth of the other's diameter),
+  // of which only the bottom's outline splits (the floor's encloses the bottom): the floor (face 0)
+  // behind, the box in front.
+  const NearCuts box = find_near_faces(floor_and_quad(dir, 0.01, true, false));
+  EXPECT_EQ(box.pairs, 2u);
+  EXPECT_EQ(box.splitting_pairs, 1u);
+  EXPECT_EQ(box.first_behind, 0);
+  EXPECT_EQ(box.first_front, 1);
+  EXPECT_NEAR(box.first_gap, 0.01, 1e-12);
+  // 0.2 above: too far for the bottom's outline (0.1 x 1.41), near enough for the floor's, which
+  // encloses the bottom.
+  const NearCuts far = find_near_faces(floor_and_quad(dir, 0.2, true, false));
+  EXPECT_EQ(far.pairs, 1u);
+  EXPECT_EQ(far.splitting_pairs, 0u);
+  EXPECT_EQ(find_near_faces(floor_and_quad(dir, 0.01, false, false)).pairs, 0u);  // facing away
+  // A long corridor's floor and ceiling, 1 apart and 20 long, face each other "from nearby" by the
+  // rule, but each one's outline encloses the other: a cut would split nothing, so nothing is named.
+  dir.write("m.mtl", "newmtl w\nKd 0.5 0.5 0.5\n");
+  const std::string obj =
+      "mtllib m.mtl\nusemtl w\nv 0 0 0\nv 0 0 20\nv 1 0 20\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 1 1 20\nv 0 1 20\n"
+      "f 1 2 3 4\nf 5 6 7 8\n";
+  const NearCuts corridor = find_near_faces(read_scene(dir.write("c.obj", obj), nullptr, {}));
+  EXPECT_EQ(corridor.pairs, 2u);
+  EXPECT_EQ(corridor.splitting_pairs, 0u);
+  EXPECT_EQ(corridor.first_behind, -1);
+  // Shifted along the corridor by half its length, each splits the other.
+  const std::string shifted =
+      "mtllib m.mtl\nusemtl w\nv 0 0 0\nv 0 0 20\nv 1 0 20\nv 1 0 0\nv 0 1 10\nv 1 1 10\nv 1 1 30\nv 0 1 30\n"
+      "f 1 2 3 4\nf 5 6 7 8\n";
+  EXPECT_EQ(find_near_faces(read_scene(dir.write("d.obj", shifted), nullptr, {})).splitting_pairs, 2u);
+}
+
 }  // namespace
 }  // namespace hrad

@@ -12,9 +12,23 @@
 
 namespace hrad {
 
-NearCuts cut_near_faces(Scene& scene, double gap) {
-  NearCuts cuts;
-  if (scene.patches.empty() || !(gap > 0.0)) return cuts;
+namespace {
+
+// Whether the convex polygon `outline` (counter-clockwise about `normal`) holds every point, to `tolerance`.
+bool encloses(const std::vector<Vec3>& outline, const Vec3& normal, const std::vector<Vec3>& points, double tolerance) {
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const Vec3 edge = outline[(i + 1) % outline.size()] - outline[i];
+    const Vec3 inward = normal.cross(edge).normalized();
+    for (const Vec3& p : points)
+      if ((p - outline[i]).dot(inward) < -tolerance) return false;
+  }
+  return true;
+}
+
+// For each patch, the patches of other faces whose outline cuts it (the rule of cut_near_faces()).
+std::vector<std::vector<int>> near_cutters(const Scene& scene, double gap, NearCuts& cuts) {
+  std::vector<std::vector<int>> cutters(scene.patches.size());
+  if (scene.patches.empty() || !(gap > 0.0)) return cutters;
   const auto [lo, hi] = scene.bounds();
   const double size = (hi - lo).norm();
   // Bucketed by the normal's direction, either way (rounded to 1e-6), each with its offset along it.
@@ -36,7 +50,6 @@ NearCuts cut_near_faces(Scene& scene, double gap) {
     const auto q = [](double x) { return static_cast<long long>(std::llround(x / 1e-6)); };
     buckets[{q(d.x()), q(d.y()), q(d.z())}].push_back({d.dot(p.vertices[0]), static_cast<int>(i), forward});
   }
-  std::vector<std::vector<int>> cutters(scene.patches.size());
   for (auto& [key, members] : buckets) {
     if (members.size() < 2) continue;
     std::sort(members.begin(), members.end(), [](const Member& a, const Member& b) {
@@ -62,12 +75,37 @@ NearCuts cut_near_faces(Scene& scene, double gap) {
         Patch shadow = pb;  // b projected onto a's plane
         for (Vec3& v : shadow.vertices) v -= (v - pa.vertices[0]).dot(pa.normal) * pa.normal;
         if (!patches_overlap(pa, shadow, pa.normal, 1e-7 * size)) continue;
+        // A pair splits the patch cut unless the outline encloses it (a corridor's opposite walls).
+        const bool splits_a = cut_a && !encloses(shadow.vertices, pb.normal, pa.vertices, 1e-7 * size);
+        const bool splits_b = cut_b && !encloses(pa.vertices, pa.normal, shadow.vertices, 1e-7 * size);
+        if (cuts.splitting_pairs == 0 && (splits_a || splits_b)) {
+          cuts.first_behind = splits_a ? pa.face : pb.face;
+          cuts.first_front = splits_a ? pb.face : pa.face;
+          cuts.first_gap = g;
+        }
+        cuts.splitting_pairs += static_cast<std::size_t>(splits_a) + static_cast<std::size_t>(splits_b);
         if (cut_a) cutters[static_cast<std::size_t>(a.patch)].push_back(b.patch), ++cuts.pairs;
         if (cut_b) cutters[static_cast<std::size_t>(b.patch)].push_back(a.patch), ++cuts.pairs;
       }
     }
   }
+  return cutters;
+}
+
+}  // namespace
+
+NearCuts find_near_faces(const Scene& scene, double gap) {
+  NearCuts cuts;
+  near_cutters(scene, gap, cuts);
+  return cuts;
+}
+
+NearCuts cut_near_faces(Scene& scene, double gap) {
+  NearCuts cuts;
+  const std::vector<std::vector<int>> cutters = near_cutters(scene, gap, cuts);
   if (cuts.pairs == 0) return cuts;
+  const auto [lo, hi] = scene.bounds();
+  const double size = (hi - lo).norm();
   const std::size_t before = scene.patches.size();
   scene.patches = cut_patches(scene.patches, cutters, true, size);
   cuts.patches_added = scene.patches.size() > before ? scene.patches.size() - before : 0;

@@ -18,11 +18,19 @@ namespace hrad {
 /// many times that patch's diameter in front of it.
 inline constexpr double kNearFaceGap = 0.1;
 
-/// What cut_near_faces() did.
+/// What find_near_faces() found and cut_near_faces() did.
 struct NearCuts {
-  std::size_t pairs = 0;          ///< (patch cut, patch whose outline cut it) pairs
-  std::size_t patches_added = 0;  ///< patches beyond the scene's before
+  std::size_t pairs = 0;            ///< (patch cut, patch whose outline cut it) pairs
+  std::size_t splitting_pairs = 0;  ///< of them, pairs whose outline crosses the patch cut (not enclosing it)
+  std::size_t patches_added = 0;    ///< patches beyond the scene's before (cut_near_faces() only)
+  int first_behind = -1;            ///< the first splitting pair's faces (indices into Scene::faces), -1 when none
+  int first_front = -1;
+  double first_gap = 0.0;  ///< the first splitting pair's distance between the planes
 };
+
+/// The pairs cut_near_faces() would cut, without cutting: `hrad solve` warns of them when it is not
+/// asked to cut (the face behind then gathers its elements' mean across the near face's shadow).
+NearCuts find_near_faces(const Scene& scene, double gap = kNearFaceGap);
 
 /// Cuts every patch along the outline, projected onto its plane, of each patch of another face that
 /// faces it from at most `gap` times its own diameter in front (parallel: normals opposite within
