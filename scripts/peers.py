@@ -181,6 +181,8 @@ def build(args):
 # (scene, program, setting label, arguments). hrad's '--aeps' settings are fractions of the scene's total area
 # (None: hrad's defaults). rpkCpp: its Galerkin solver, 11 iterations as its batch examples run it.
 RPK = ['-raytracing-method', 'none', '-iterations', '11', '-radiance-method', 'Galerkin']
+# hrad's most accurate options: linear elements, and sources refined below aeps where a receiver is near.
+LINEAR_AUTO = ['--basis', 'linear', '--source-levels', 'auto']
 SETTINGS = [
     ('splash_test', 'SPLASH-2', 'defaults', []),
     ('splash_test', 'SPLASH-2', '-ae 2000 -bf 0.005 -en 0.001', ['-ae', '2000', '-bf', '0.005', '-en', '0.001']),
@@ -188,6 +190,7 @@ SETTINGS = [
     ('splash_test', 'hrad', 'defaults', None),
     ('splash_test', 'hrad', 'aeps total/4000', 1 / 4000),
     ('splash_test', 'hrad', 'linear basis', (None, ['--basis', 'linear'])),
+    ('splash_test', 'hrad', 'linear, source levels auto', (None, LINEAR_AUTO)),
     ('splash_room', 'SPLASH-2', 'defaults', []),
     ('splash_room', 'hrad', 'aeps total/250', 1 / 250),
     ('splash_room', 'hrad', 'linear, total/250, feps 0.03, 16 samples',
@@ -196,6 +199,7 @@ SETTINGS = [
      (1 / 250, ['--basis', 'linear'] + ['--feps', '0.025', '--visibility-samples', '28'])),
     ('splash_room', 'hrad', 'defaults', None),
     ('splash_room', 'hrad', 'linear basis', (None, ['--basis', 'linear'])),
+    ('splash_room', 'hrad', 'linear, source levels auto', (None, LINEAR_AUTO)),
     ('rpk_cube', 'rpkCpp', 'link error 1e-4', ['-gr-link-error-threshold', '1e-4']),
     ('rpk_cube', 'rpkCpp', 'defaults (1e-5)', []),
     ('rpk_cube', 'rpkCpp', 'link error 1e-6', ['-gr-link-error-threshold', '1e-6']),
@@ -208,30 +212,35 @@ SETTINGS = [
     ('rpk_cube', 'hrad', 'defaults', None),
     ('rpk_cube', 'hrad', 'aeps total/4000', 1 / 4000),
     ('rpk_cube', 'hrad', 'linear basis', (None, ['--basis', 'linear'])),
+    ('rpk_cube', 'hrad', 'linear, source levels auto', (None, LINEAR_AUTO)),
     ('rpk_office2', 'rpkCpp', 'link error 1e-4', ['-gr-link-error-threshold', '1e-4']),
     ('rpk_office2', 'rpkCpp', 'defaults (1e-5)', []),
     ('rpk_office2', 'rpkCpp', 'link error 1e-6', ['-gr-link-error-threshold', '1e-6']),
     ('rpk_office2', 'rpkCpp', 'link error 1e-7', ['-gr-link-error-threshold', '1e-7']),
     ('rpk_office2', 'hrad', 'aeps total/100', 1 / 100),
     ('rpk_office2', 'hrad', 'defaults', None),
-    ('rpk_office2', 'hrad', 'source levels 2', (None, ['--source-levels', '2'])),
-    ('rpk_office2', 'hrad', 'source levels 3', (None, ['--source-levels', '3'])),
-    ('rpk_office2', 'hrad', 'source levels 4', (None, ['--source-levels', '4'])),
-    ('rpk_office2', 'hrad', 'linear, aeps total/100', (1 / 100, ['--basis', 'linear'])),
+    ('rpk_office2', 'hrad', 'source levels auto', (None, ['--source-levels', 'auto'])),
     ('rpk_office2', 'hrad', 'linear, total/50, feps 0.04, 4 samples',
      (1 / 50, ['--basis', 'linear'] + ['--feps', '0.04', '--visibility-samples', '4'])),
-    ('rpk_office2', 'hrad', 'linear, total/100, feps 0.04, 4 samples',
-     (1 / 100, ['--basis', 'linear'] + ['--feps', '0.04', '--visibility-samples', '4'])),
-    ('rpk_office2', 'hrad', 'linear, total/100, feps 0.04, 16 samples',
-     (1 / 100, ['--basis', 'linear'] + ['--feps', '0.04', '--visibility-samples', '16'])),
     ('rpk_office2', 'hrad', 'linear, feps 0.02, 16 samples',
      (None, ['--basis', 'linear'] + ['--feps', '0.02', '--visibility-samples', '16'])),
     ('rpk_office2', 'hrad', 'linear basis', (None, ['--basis', 'linear'])),
+    ('rpk_office2', 'hrad', 'linear, source levels auto, total/50, feps 0.04, 4 samples',
+     (1 / 50, LINEAR_AUTO + ['--feps', '0.04', '--visibility-samples', '4'])),
+    ('rpk_office2', 'hrad', 'linear, source levels auto, total/100, feps 0.04, 8 samples',
+     (1 / 100, LINEAR_AUTO + ['--feps', '0.04', '--visibility-samples', '8'])),
+    ('rpk_office2', 'hrad', 'linear, source levels auto, total/200, feps 0.04, 16 samples',
+     (1 / 200, LINEAR_AUTO + ['--feps', '0.04', '--visibility-samples', '16'])),
+    ('rpk_office2', 'hrad', 'linear, source levels auto, feps 0.02, 16 samples',
+     (None, LINEAR_AUTO + ['--feps', '0.02', '--visibility-samples', '16'])),
+    ('rpk_office2', 'hrad', 'linear, source levels auto', (None, LINEAR_AUTO)),
 ]
 SPLASH_SCENE = {'splash_test': ['-batch'], 'splash_room': ['-batch', '-room']}
 RPK_SCENE = {'rpk_cube': 'etc/cube.mgf', 'rpk_office2': 'etc/office2/office2.mgf'}
-# The reference: hrad with its smallest elements this fraction of the total area; its check uses 4x that.
+# The reference: hrad's most accurate setting (linear elements, sources refined below aeps where a receiver is
+# near) with its smallest elements this fraction of the total area; its check uses 4x that.
 REFERENCE_AEPS = 1 / 16000
+REFERENCE_OPTIONS = LINEAR_AUTO
 # Points per polygon of the independent Monte Carlo ruler (hrad reference --faces), which judges the reference.
 RULER_SAMPLES = 65536
 
@@ -358,10 +367,12 @@ def run(args):
         check_path = os.path.join(args.work, scene + '.reference_check.json')
         ruler_path = os.path.join(args.work, scene + '.ruler.csv')
         if not (args.reuse_references and os.path.exists(ref_path) and os.path.exists(check_path)):
-            print('%s: reference (hrad, aeps total/%g and total/%g, all cores) ... %.0f s so far'
-                  % (scene, 1 / REFERENCE_AEPS, 1 / (4 * REFERENCE_AEPS), time.time() - started), file=sys.stderr)
+            print('%s: reference (hrad %s, aeps total/%g and total/%g, all cores) ... %.0f s so far'
+                  % (scene, ' '.join(REFERENCE_OPTIONS), 1 / REFERENCE_AEPS, 1 / (4 * REFERENCE_AEPS),
+                     time.time() - started), file=sys.stderr)
             for fraction, path in ((REFERENCE_AEPS, ref_path), (4 * REFERENCE_AEPS, check_path)):
-                subprocess.run(hrad_cmd(hrad, obj, fraction, area, path, 0), check=True, stdout=subprocess.DEVNULL)
+                subprocess.run(hrad_cmd(hrad, obj, (fraction, REFERENCE_OPTIONS), area, path, 0), check=True,
+                               stdout=subprocess.DEVNULL)
         if not ((args.reuse_references or args.reuse_rulers) and os.path.exists(ruler_path)):
             print('%s: the Monte Carlo ruler (%d points per polygon, all cores) ... %.0f s so far'
                   % (scene, RULER_SAMPLES, time.time() - started), file=sys.stderr)
@@ -409,9 +420,9 @@ def run(args):
         table.append('| %s | %s, %s | %.2f | %.2f | %.2f%% | %+.1f%% | %.2f%% |' % (
             scene, program, label, med, ratio, 100 * err, 100 * bias, 100 * against_ruler))
     table.append('')
-    table.append('| scene | reference (hrad, aeps total/%g) against hrad at total/%g | against the Monte Carlo ruler '
-                 '(%d points per polygon) | the ruler\'s own noise |' % (1 / REFERENCE_AEPS, 1 / (4 * REFERENCE_AEPS),
-                                                                      RULER_SAMPLES))
+    table.append('| scene | reference (hrad %s, aeps total/%g) against it at total/%g | against the Monte Carlo '
+                 'ruler (%d points per polygon) | the ruler\'s own noise |' % (
+                     ' '.join(REFERENCE_OPTIONS), 1 / REFERENCE_AEPS, 1 / (4 * REFERENCE_AEPS), RULER_SAMPLES))
     table.append('| --- | --- | --- | --- |')
     for scene, (check, ruler_diff, ruler_noise) in dict((r[0], r[6]) for r in results).items():
         table.append('| %s | %.2f%% | %.2f%% | %.2f%% |' % (scene, 100 * check, 100 * ruler_diff, 100 * ruler_noise))
