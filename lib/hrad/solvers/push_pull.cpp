@@ -135,6 +135,24 @@ NodeField PushPull::make_field() const {
   return field;
 }
 
+void limit_positivity(PointValues& b, const std::array<double, 9>& mean_weights, int vertex_count, int channels) {
+  const int points = vertex_count == 4 ? 9 : 7;
+  Rgb mean = Rgb::Zero();
+  for (int k = 0; k < points; ++k) mean += mean_weights[static_cast<std::size_t>(k)] * b[static_cast<std::size_t>(k)];
+  for (int c = 0; c < channels; ++c) {
+    // A linear (bilinear) field is smallest at a corner, the first points.
+    double lowest = b[0][c];
+    for (int k = 1; k < linear_corners(vertex_count); ++k) lowest = std::min(lowest, b[static_cast<std::size_t>(k)][c]);
+    if (lowest >= 0.0) continue;
+    // Scaled about the mean by theta, the lowest corner lands on 0 (up to rounding, clamped away).
+    const double theta = mean[c] > 0.0 ? mean[c] / (mean[c] - lowest) : 0.0;
+    for (int k = 0; k < points; ++k) {
+      double& v = b[static_cast<std::size_t>(k)][c];
+      v = mean[c] > 0.0 ? std::max(0.0, mean[c] + theta * (v - mean[c])) : mean[c];
+    }
+  }
+}
+
 Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& down, LeafChange* change) const {
   const ElementNode& n = h_.node(id);
   const std::size_t i = static_cast<std::size_t>(id);
@@ -147,6 +165,7 @@ Rgb PushPull::push_pull_element(NodeField& field, NodeId id, const PointValues& 
     const int points = n.vertex_count == 4 ? 9 : 7;
     for (int k = 0; k < points; ++k) b[k] = n.emission + n.reflectance * total[k];
     b = project_linear(projections_[i], n.vertex_count, b);
+    limit_positivity(b, mean_weights_[i], n.vertex_count, channels_);
     Rgb mean = Rgb::Zero();
     for (int k = 0; k < points; ++k) {
       mean += mean_weights_[i][k] * b[k];

@@ -48,6 +48,16 @@ struct LeafChange {
   }
 };
 
+/// A linear leaf's field (values at its points, linear_basis.h) scaled towards its mean, per channel,
+/// just enough that no corner is below 0 (Zhang & Shu 2010, "On maximum-principle-satisfying high
+/// order schemes for scalar conservation laws": the scaling keeps the mean, so power, and leaves
+/// fields >= 0 untouched); flat where the mean itself is below 0. The L2 projection of a field >= 0
+/// can dip below 0 at a corner (a leaf lit along one edge), and a corner below 0 then sends negative
+/// light on. A mean below 0 comes from links that deliver negative light (refinement_oracle.cpp
+/// shape_of(): a link's send shape, moved to its exact mean, is below 0 where the factor peaks at
+/// another point of the sender); setting it to 0 would add power (a long corridor's far end, 16%).
+void limit_positivity(PointValues& b, const std::array<double, 9>& mean_weights, int vertex_count, int channels);
+
 /// What a part below aeps sends through the links between elements (send_closure.h), per unit of
 /// its radiosity's moments m: sum_i coefficients_i m_i; per unit radiosity and area, sigma (0: the
 /// part sends as its moments say); and what that should be, `closed`.
