@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "hrad/core/scene_checks.h"
+#include "hrad/io/near_faces.h"
 #include "hrad/io/scene_json.h"
 #include "hrad/io/scene_reader.h"
 
@@ -36,6 +37,7 @@ void add_info_command(CLI::App& app) {
     const Scene scene = read_scene(args->scene, &warnings);
     for (const std::string& w : warnings) std::cerr << w << "\n";
     for (const std::string& w : scene_warnings(scene)) std::cerr << scene.path << ": warning: " << w << "\n";
+    if (const std::string w = near_faces_warning(scene); !w.empty()) std::cerr << w << "\n";
     const nlohmann::json j = scene_summary_json(scene);
     if (args->json) {
       std::cout << j.dump(2) << "\n";

@@ -68,6 +68,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -204,17 +205,8 @@ void add_solve_command(CLI::App& app) {
     read_options.cut_near_faces = args->cut_near_faces;
     const Scene scene = read_scene(args->scene, &warnings, read_options);
     for (const std::string& w : scene_warnings(scene)) warnings.push_back(scene.path + ": warning: " + w);
-    if (!args->cut_near_faces) {
-      if (const NearCuts near = find_near_faces(scene); near.splitting_pairs > 0) {
-        const auto line = [&](int face) { return scene.faces[static_cast<std::size_t>(face)].line; };
-        warnings.push_back(fmt::format(
-            "{}:{}: warning: {} pair{} of faces face each other from nearby (first: line {}, {:.3g} in front of "
-            "line {}): the face behind is dark in the near face's shadow and lit around it, and its elements "
-            "average the two (the near face gathers that mean); --cut-near-faces cuts along the outline",
-            scene.path, line(near.first_behind), near.splitting_pairs, near.splitting_pairs == 1 ? "" : "s",
-            line(near.first_front), near.first_gap, line(near.first_behind)));
-      }
-    }
+    if (!args->cut_near_faces)
+      if (std::string w = near_faces_warning(scene); !w.empty()) warnings.push_back(std::move(w));
     for (const std::string& w : warnings) std::cerr << w << "\n";
     std::vector<std::pair<std::string, std::string>> inputs;
     for (const std::string& f : scene.files) inputs.emplace_back("an input of the scene", f);

@@ -156,7 +156,7 @@ TEST(CliWarnings, FlushRugIsCutOutOfTheFloorAndPowerBalances) {
   }
 }
 
-TEST(CliWarnings, AFaceJustAboveTheFloorFacingItIsNamedUnlessTheSolveCutsAlongIt) {
+TEST(CliWarnings, AFaceJustAboveTheFloorFacingItIsNamedByInfoAndUnlessTheSolveCutsAlongIt) {
   TempDir dir;
   dir.write("box.mtl", kMtl);
   // A box's bottom 1 cm above the floor, facing down: the floor is dark under it and lit around it.
@@ -172,6 +172,9 @@ TEST(CliWarnings, AFaceJustAboveTheFloorFacingItIsNamedUnlessTheSolveCutsAlongIt
   EXPECT_NE(plain.err.find("--cut-near-faces cuts along the outline"), std::string::npos) << plain.err;
   const nlohmann::json report = nlohmann::json::parse(slurp(dir.path("r.json")));
   EXPECT_NE(report["warnings"].dump().find("face each other from nearby"), std::string::npos);
+  const RunResult info = run_hrad("info " + obj, dir);  // names them before any solve
+  EXPECT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.err.find(warning), std::string::npos) << info.err;
   const RunResult cut = run_hrad("solve " + obj + " --quiet --cut-near-faces --report " + dir.path("c.json"), dir);
   ASSERT_EQ(cut.exit_code, 0) << cut.err;
   EXPECT_EQ(cut.err.find("from nearby"), std::string::npos) << cut.err;

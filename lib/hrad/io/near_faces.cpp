@@ -6,6 +6,8 @@
 #include <tuple>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "hrad/core/scene_checks.h"
 #include "hrad/geometry/convex_clip.h"
 #include "hrad/geometry/polygon.h"
@@ -111,6 +113,18 @@ NearCuts cut_near_faces(Scene& scene, double gap) {
   cuts.patches_added = scene.patches.size() > before ? scene.patches.size() - before : 0;
   relink_faces(scene);
   return cuts;
+}
+
+std::string near_faces_warning(const Scene& scene) {
+  const NearCuts near = find_near_faces(scene);
+  if (near.splitting_pairs == 0) return {};
+  const auto line = [&](int face) { return scene.faces[static_cast<std::size_t>(face)].line; };
+  return fmt::format(
+      "{}:{}: warning: {} pair{} of faces face each other from nearby (first: line {}, {:.3g} in front of line {}): "
+      "the face behind is dark in the near face's shadow and lit around it, and its elements average the two "
+      "(the near face gathers that mean); hrad solve --cut-near-faces cuts along the outline",
+      scene.path, line(near.first_behind), near.splitting_pairs, near.splitting_pairs == 1 ? "" : "s",
+      line(near.first_front), near.first_gap, line(near.first_behind));
 }
 
 }  // namespace hrad

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 
 #include "hrad/core/scene.h"
 
@@ -31,6 +32,10 @@ struct NearCuts {
 /// The pairs cut_near_faces() would cut, without cutting: `hrad solve` warns of them when it is not
 /// asked to cut (the face behind then gathers its elements' mean across the near face's shadow).
 NearCuts find_near_faces(const Scene& scene, double gap = kNearFaceGap);
+
+/// The warning `hrad solve` (when not cutting) and `hrad info` print for find_near_faces()'s
+/// splitting pairs, naming the file, the count and the first pair's lines and gap; "" when none.
+std::string near_faces_warning(const Scene& scene);
 
 /// Cuts every patch along the outline, projected onto its plane, of each patch of another face that
 /// faces it from at most `gap` times its own diameter in front (parallel: normals opposite within
