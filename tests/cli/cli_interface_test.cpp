@@ -123,6 +123,29 @@ TEST(CliSolve, SameBytesRunAfterRunAndWhateverTheThreadCount) {
   }
 }
 
+TEST(CliSweep, CutsAlongNearFacesWhenAskedAndNamesThemOtherwise) {
+  // The bundled lamp 1 mm in front of its wall: without --cut-near-faces the sweep names the pair as
+  // hrad solve does; with it, no warning, the option in command.txt, and the wall cut into more
+  // patches, so that the uncut sweep's reference samples are refused as another scene's.
+  TempDir dir;
+  const std::string base =
+      "sweep notebooks_data/scenes/lamp_near_wall.obj --quick --elements 64 --patches 12 --feps 0.3 --aeps 0.001 "
+      "--no-gather --basis constant --samples 64 --out ";
+  const RunResult uncut = run_hrad(base + dir.path("uncut"), dir);
+  ASSERT_EQ(uncut.exit_code, 0) << uncut.err;
+  EXPECT_NE(uncut.err.find("lamp_near_wall.obj:53: warning: 1 pair of faces face each other from nearby"),
+            std::string::npos)
+      << uncut.err;
+  const RunResult cut = run_hrad(base + dir.path("cut") + " --cut-near-faces", dir);
+  ASSERT_EQ(cut.exit_code, 0) << cut.err;
+  EXPECT_EQ(cut.err.find("from nearby"), std::string::npos) << cut.err;
+  EXPECT_NE(slurp(dir.path("cut") + "/command.txt").find("--cut-near-faces"), std::string::npos);
+  const RunResult mixed =
+      run_hrad(base + dir.path("mixed") + " --cut-near-faces --reference-from " + dir.path("uncut"), dir);
+  EXPECT_NE(mixed.exit_code, 0);
+  EXPECT_NE(mixed.err.find("reference_samples.json: 768 samples, this scene has 1024"), std::string::npos) << mixed.err;
+}
+
 TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   // A small sweep end to end on the simple room (a table shadows the floor): every file of the
   // interface, one CSV row per setting, and error that falls as each method's mesh gets finer.
@@ -132,7 +155,8 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   // room's element grid, and the full matrix's measured error can then rise with refinement.
   const RunResult r = run_hrad(
       "sweep notebooks_data/scenes/simple_room.obj --elements 32,64,128 --patches 12,24,48 --feps 0.3,0.1,0.03 "
-      "--aeps 0.01,0.003,0.001 --out " + out,
+      "--aeps 0.01,0.003,0.001 --out " +
+          out,
       dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("reference"), std::string::npos) << r.err;  // progress on stderr
@@ -250,8 +274,8 @@ TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {
   EXPECT_EQ(nlohmann::json::parse(slurp(again + "/reference.json")).at("reused_from"), out);
   // command.txt reruns the sweep: every option given is in it.
   const std::string command = slurp(again + "/command.txt");
-  for (const char* given : {"--elements 128", "--patches 20", "--feps 0.3", "--aeps 0.001",
-                            "--basis constant", "--reference-from"})
+  for (const char* given :
+       {"--elements 128", "--patches 20", "--feps 0.3", "--aeps 0.001", "--basis constant", "--reference-from"})
     EXPECT_NE(command.find(given), std::string::npos) << given << " missing from " << command;
   // Another scene's samples are refused before anything runs, naming the file.
   const RunResult wrong = run_hrad(

@@ -169,7 +169,8 @@ TEST(CliWarnings, AFaceJustAboveTheFloorFacingItIsNamedByInfoAndUnlessTheSolveCu
   const RunResult plain = run_hrad("solve " + obj + " --quiet --report " + dir.path("r.json"), dir);
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_NE(plain.err.find(warning), std::string::npos) << plain.err;
-  EXPECT_NE(plain.err.find("--cut-near-faces cuts along the outline"), std::string::npos) << plain.err;
+  EXPECT_NE(plain.err.find("--cut-near-faces (hrad solve, hrad sweep) cuts along the outline"), std::string::npos)
+      << plain.err;
   const nlohmann::json report = nlohmann::json::parse(slurp(dir.path("r.json")));
   EXPECT_NE(report["warnings"].dump().find("face each other from nearby"), std::string::npos);
   const RunResult info = run_hrad("info " + obj, dir);  // names them before any solve

@@ -122,7 +122,7 @@ std::string near_faces_warning(const Scene& scene) {
   return fmt::format(
       "{}:{}: warning: {} pair{} of faces face each other from nearby (first: line {}, {:.3g} in front of line {}): "
       "the face behind is dark in the near face's shadow and lit around it, and its elements average the two "
-      "(the near face gathers that mean); hrad solve --cut-near-faces cuts along the outline",
+      "(the near face gathers that mean); --cut-near-faces (hrad solve, hrad sweep) cuts along the outline",
       scene.path, line(near.first_behind), near.splitting_pairs, near.splitting_pairs == 1 ? "" : "s",
       line(near.first_front), near.first_gap, line(near.first_behind));
 }

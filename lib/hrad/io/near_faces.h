@@ -33,7 +33,7 @@ struct NearCuts {
 /// asked to cut (the face behind then gathers its elements' mean across the near face's shadow).
 NearCuts find_near_faces(const Scene& scene, double gap = kNearFaceGap);
 
-/// The warning `hrad solve` (when not cutting) and `hrad info` print for find_near_faces()'s
+/// The warning `hrad solve` and `hrad sweep` (when not cutting) and `hrad info` print for find_near_faces()'s
 /// splitting pairs, naming the file, the count and the first pair's lines and gap; "" when none.
 std::string near_faces_warning(const Scene& scene);
 
