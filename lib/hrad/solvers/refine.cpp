@@ -46,6 +46,9 @@ void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const Refinemen
       switch (c.decision) {
         case Decision::kDrop:
           break;
+        case Decision::kUnseen:
+          result.unseen.emplace_back(c.p, c.q);
+          break;
         case Decision::kLink:
           result.links.push_back({c.p, c.q, c.f_pq, c.f_qp, c.partial, c.fraction, c.hidden_p, c.hidden_q, c.shadow_p,
                                   c.shadow_q, c.share_p, c.share_q, c.shaped, c.shape_p, c.shape_q, c.source_p,

@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "hrad/mesh/element_hierarchy.h"
@@ -37,6 +38,8 @@ struct Link {
 
 struct RefineResult {
   std::vector<Link> links;
+  /// The pairs decided Decision::kUnseen (p, q as examined).
+  std::vector<std::pair<NodeRef, NodeRef>> unseen;
   std::uint64_t candidates = 0;  ///< pairs the oracle examined
   std::size_t splits = 0;        ///< split decisions (new or existing children)
   std::size_t new_nodes = 0;     ///< elements the hierarchy grew by

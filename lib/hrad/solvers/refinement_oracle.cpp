@@ -603,8 +603,8 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
     fraction =
         evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, among, samples, kLinkedFractionStream);
     if (!(fraction > 0.0)) {
-      // Every linked sample was blocked too: nothing to link.
-      c.decision = Decision::kDrop;
+      // Every linked sample was blocked too: nothing to link, as far as these samples know.
+      c.decision = Decision::kUnseen;
       return;
     }
     if (!classified && fraction == 1.0 && sp.seen == sp.unoccluded && sq.seen == sq.unoccluded &&

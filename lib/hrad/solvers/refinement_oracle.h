@@ -25,6 +25,10 @@ enum class Decision : std::uint8_t {
   kSplitP,  ///< replace by (child of p, q) for each child of p
   kSplitQ,  ///< replace by (p, child of q)
   kSelf,    ///< a cluster's self-link: its children's self-links and the links between them
+  /// No link: the pair is partly visible but every sampled point pair was blocked. A sampled
+  /// estimate whose count followed the ends' weights: decided again when an end turns out brighter
+  /// than weighed (RefineResult::unseen).
+  kUnseen,
 };
 
 /// A pair of nodes under examination. Links are two-way: p gathers from q with f_pq = F(p -> q)
