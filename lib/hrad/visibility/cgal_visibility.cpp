@@ -403,6 +403,7 @@ class CgalVisibility final : public Visibility {
   std::vector<Triangle> triangles_;  ///< non-degenerate fan triangles of all patches
   std::vector<int> triangle_patch_;
   std::vector<CGAL::Bbox_3> triangle_boxes_;
+  std::vector<CGAL::Bbox_3> patch_boxes_;             ///< the union of each patch's triangle_boxes_
   std::vector<std::pair<int, int>> patch_triangles_;  ///< [begin, end) into triangles_ per patch
   std::vector<detail::Triangle3> triangle_coords_;    ///< triangles_ as doubles
   std::vector<int> triangle_plane_;                   ///< plane_classes() of triangles_
@@ -461,6 +462,9 @@ CgalVisibility::CgalVisibility(const Scene& scene, const VisibilityOptions& opti
       for (const Point& x : pts)
         planar = planar && CGAL::orientation(pts[tri[0]], pts[tri[1]], pts[tri[2]], x) == CGAL::COPLANAR;
     patch_triangles_.emplace_back(begin, static_cast<int>(triangles_.size()));
+    CGAL::Bbox_3 box;  // empty
+    for (std::size_t t = static_cast<std::size_t>(begin); t < triangles_.size(); ++t) box += triangle_boxes_[t];
+    patch_boxes_.push_back(box);
     patch_planar_.push_back(planar ? 1 : 0);
     patch_points_.push_back(pts);
     const Vec3 n = newell_normal(v);
@@ -655,13 +659,32 @@ bool CgalVisibility::any_triangle_meets(const Point& a, int patch_a, const Point
                                         const std::span<const int>* occluders, const Meets& meets) const {
   if (occluders != nullptr) {
     const SegmentBoxCull cull(a, b, magnitude_);
-    for (const int patch : *occluders) {
-      if (patch == patch_a || patch == patch_b) continue;
+    const auto patch_meets = [&](int patch) {
+      if (patch == patch_a || patch == patch_b || !cull.may_meet(patch_boxes_[static_cast<std::size_t>(patch)]))
+        return false;
       const auto [begin, end] = patch_triangles_[static_cast<std::size_t>(patch)];
+      if (end - begin == 1) return meets(triangle_ref(static_cast<std::size_t>(begin)));
       for (int i = begin; i < end; ++i)
         if (cull.may_meet(triangle_boxes_[static_cast<std::size_t>(i)]) &&
             meets(triangle_ref(static_cast<std::size_t>(i))))
           return true;
+      return false;
+    };
+    // A pair's rays come one after another with the same list, and the occluder that blocked one
+    // ray often blocks the next (the shadow cache of Haines & Greenberg 1986): it is tested first.
+    // Whether a ray is blocked does not depend on the order.
+    thread_local const int* cached_list = nullptr;
+    thread_local std::size_t cached = 0;
+    const std::span<const int> list = *occluders;
+    const bool hit = list.data() == cached_list && cached < list.size();
+    if (hit && patch_meets(list[cached])) return true;
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      if (hit && k == cached) continue;
+      if (patch_meets(list[k])) {
+        cached_list = list.data();
+        cached = k;
+        return true;
+      }
     }
     return false;
   }
@@ -828,7 +851,7 @@ class ShaftTest {
     for (std::size_t f = 0; f < facets_.size(); ++f)
       if (side(f, t[0], tv[0]) != CGAL::POSITIVE && side(f, t[1], tv[1]) != CGAL::POSITIVE &&
           side(f, t[2], tv[2]) != CGAL::POSITIVE)
-        return;  // a facet plane weakly separates t from the shaft
+        return;                     // a facet plane weakly separates t from the shaft
     if (!straddles(t, tv)) return;  // t's plane weakly separates the shaft from t
     if constexpr (std::is_same_v<Ops, DoubleOps>) {
       bool inside = true;
