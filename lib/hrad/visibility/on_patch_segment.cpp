@@ -73,10 +73,12 @@ bool OnPatchSegment::degenerate() const {
   return decide([](auto, const auto& p, const auto& q) { return bool(p == q); });
 }
 
-bool OnPatchSegment::misses(const Triangle3& t, bool a_in_plane, bool b_in_plane) const {
+int OnPatchSegment::settled(const Triangle3& t, bool a_in_plane, bool b_in_plane) const {
   // The cheap answers of meets() in doubles, taken only where the filter makes them certain for
   // the exact points: both ends strictly on one side of t's plane, or the segment's line passing
-  // beside t. Most candidate triangles of a ray are settled here, without a rounding-mode switch.
+  // beside t, miss; both ends strictly on opposite sides and the line strictly inside t's three
+  // edges meets (a blocked ray, which otherwise costs an interval evaluation to confirm). Most
+  // candidate triangles of a ray are settled here, without a rounding-mode switch.
   const Vec3& pa = a_mid_;
   const Vec3& pb = b_mid_;
   const double w = reach_;
@@ -84,22 +86,27 @@ bool OnPatchSegment::misses(const Triangle3& t, bool a_in_plane, bool b_in_plane
   const Vec3 lo = pa.cwiseMin(pb).cwiseMin(t[0]).cwiseMin(t[1]).cwiseMin(t[2]);
   const Vec3 hi = pa.cwiseMax(pb).cwiseMax(t[0]).cwiseMax(t[1]).cwiseMax(t[2]);
   const double spread = (hi - lo).maxCoeff();
+  int oa = 0, ob = 0;
   if (!a_in_plane && !b_in_plane) {
-    const int oa = certain_orientation(t[0], t[1], t[2], pa, spread, w);
-    const int ob = certain_orientation(t[0], t[1], t[2], pb, spread, w);
-    if (oa != 0 && oa == ob) return true;
+    oa = certain_orientation(t[0], t[1], t[2], pa, spread, w);
+    ob = certain_orientation(t[0], t[1], t[2], pb, spread, w);
+    if (oa != 0 && oa == ob) return -1;
   }
-  bool pos = false, neg = false;
+  bool pos = false, neg = false, certain = true;
   for (int m = 0; m < 3; ++m) {
     const int o = certain_orientation(pa, pb, t[m], t[(m + 1) % 3], spread, w);
     pos |= o > 0;
     neg |= o < 0;
+    certain = certain && o != 0;
   }
-  return pos && neg;
+  if (pos && neg) return -1;
+  // open_segment_meets_triangle(): ends strictly on opposite sides, the line inside every edge.
+  if (oa != 0 && ob == -oa && certain) return 1;
+  return 0;
 }
 
 bool OnPatchSegment::meets(const Triangle3& t, bool a_in_plane, bool b_in_plane) const {
-  if (misses(t, a_in_plane, b_in_plane)) return false;
+  if (const int known = settled(t, a_in_plane, b_in_plane); known != 0) return known > 0;
   return decide([&](auto kernel, const auto& p, const auto& q) {
     using K = decltype(kernel);
     const typename K::Triangle_3 tri = kernel_triangle<K>(t);
@@ -127,6 +134,17 @@ bool OnPatchSegment::meets(const Triangle3& t, bool a_in_plane, bool b_in_plane)
 }
 
 bool OnPatchSegment::facing(const Triangle3& ta, const Triangle3& tb) const {
+  {
+    // In doubles where the filter makes both signs certain for the exact points.
+    Vec3 lo = a_mid_.cwiseMin(b_mid_), hi = a_mid_.cwiseMax(b_mid_);
+    for (const Triangle3* t : {&ta, &tb})
+      for (const Vec3& v : *t) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const double spread = (hi - lo).maxCoeff();
+    const int ob = certain_orientation(ta[0], ta[1], ta[2], b_mid_, spread, reach_);
+    const int oa = certain_orientation(tb[0], tb[1], tb[2], a_mid_, spread, reach_);
+    if (ob < 0 || oa < 0) return false;
+    if (ob > 0 && oa > 0) return true;
+  }
   return decide([&](auto kernel, const auto& p, const auto& q) {
     using K = decltype(kernel);
     const auto u = kernel_triangle<K>(ta), v = kernel_triangle<K>(tb);

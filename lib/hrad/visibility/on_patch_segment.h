@@ -41,8 +41,9 @@ class OnPatchSegment {
   bool facing(const Triangle3& ta, const Triangle3& tb) const;
 
  private:
-  /// True only where doubles prove that the segment misses t (a filter in front of meets()).
-  bool misses(const Triangle3& t, bool a_in_plane, bool b_in_plane) const;
+  /// meets() where doubles prove it (a filter in front of the exact test): -1 misses, 1 meets, 0
+  /// not settled.
+  int settled(const Triangle3& t, bool a_in_plane, bool b_in_plane) const;
   template <class Decide>
   bool decide(Decide&& decide) const;
 
