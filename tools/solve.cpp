@@ -89,16 +89,11 @@ namespace hrad::cli {
 
 namespace {
 
-// What to try when a solve does not balance power, from what it used and whether the scene has
-// faces facing each other from nearby, uncut (README "Limits": through the HSA push's fields they
-// unbalance power whatever --aeps, and the cut or the leaf push balances them).
-std::string balance_advice(const SolveSummary& summary, bool near_faces) {
+// What to try when a solve does not balance power, from what it used (README "Limits").
+std::string balance_advice(const SolveSummary& summary) {
   const SolveOptions& used = summary.used;
   if (summary.termination == Termination::kMaxIterations)
     return "the iterations stopped at --max-iterations before converging: raise it";
-  if (summary.method == Method::kHierarchical && near_faces && used.push == Push::kHsa)
-    return "the faces named above face each other from nearby, which refining does not balance: cut along them "
-           "(--cut-near-faces) or resolve the links to the leaves (--push leaf)";
   std::string advice = summary.method == Method::kHierarchical ? "refine (--feps, --aeps)"
                        : used.kernel == FormFactorKernel::kAnalytic || used.basis == Basis::kLinear
                            ? "refine (--max-area)"
@@ -210,12 +205,8 @@ void add_solve_command(CLI::App& app) {
     read_options.cut_near_faces = args->cut_near_faces;
     const Scene scene = read_scene(args->scene, &warnings, read_options);
     for (const std::string& w : scene_warnings(scene)) warnings.push_back(scene.path + ": warning: " + w);
-    bool near_faces = false;
     if (!args->cut_near_faces)
-      if (std::string w = near_faces_warning(scene); !w.empty()) {
-        warnings.push_back(std::move(w));
-        near_faces = true;
-      }
+      if (std::string w = near_faces_warning(scene); !w.empty()) warnings.push_back(std::move(w));
     for (const std::string& w : warnings) std::cerr << w << "\n";
     std::vector<std::pair<std::string, std::string>> inputs;
     for (const std::string& f : scene.files) inputs.emplace_back("an input of the scene", f);
@@ -251,7 +242,7 @@ void add_solve_command(CLI::App& app) {
                         "(allowed {:.3g}: "
                         "{} plus {} standard errors); {}",
                         scene.path, fmt::format("{:.3g}", balance->relative_residual()), balance->allowed(),
-                        kPowerBalanceTolerance, kPowerBalanceStandardErrors, balance_advice(summary, near_faces)));
+                        kPowerBalanceTolerance, kPowerBalanceStandardErrors, balance_advice(summary)));
         std::cerr << warnings.back() << "\n";
       }
     }

@@ -188,32 +188,5 @@ TEST(CliWarnings, AFaceJustAboveTheFloorFacingItIsNamedByInfoAndUnlessTheSolveCu
   EXPECT_EQ(lifted.err.find("from nearby"), std::string::npos) << lifted.err;
 }
 
-// The same box bottom 1 cm above the floor, uncut: through the HSA push's fields the floor's leaves
-// beside it send more than their power, and the solve gains 2.5% of the emitted power whatever
-// --aeps (README "Limits"). The power warning says so and names the two remedies, not refining;
-// each of them balances.
-TEST(CliWarnings, PowerUnbalancedByNearFacesPointsToTheCutNotToRefining) {
-  TempDir dir;
-  dir.write("box.mtl", kMtl);
-  const std::string obj =
-      dir.write("bottom.obj", box_obj(false, "Lamp") +
-                                  "o Box\nusemtl Wall\nv 0.500000 0.010000 0.250000\nv 0.500000 0.010000 0.750000\n"
-                                  "v 1.500000 0.010000 0.750000\nv 1.500000 0.010000 0.250000\nf 16 15 14 13\n");
-  const RunResult plain = run_hrad("solve " + obj + " --quiet", dir);
-  ASSERT_EQ(plain.exit_code, 0) << plain.err;
-  EXPECT_NE(plain.err.find("does not balance power"), std::string::npos) << plain.err;
-  EXPECT_NE(plain.err.find("cut along them (--cut-near-faces) or resolve the links to the leaves (--push leaf)"),
-            std::string::npos)
-      << plain.err;
-  EXPECT_EQ(plain.err.find("refine (--feps, --aeps)"), std::string::npos) << plain.err;
-  for (const std::string remedy : {"--cut-near-faces", "--push leaf"}) {
-    const RunResult r = run_hrad("solve " + obj + " --quiet " + remedy + " --report " + dir.path("r.json"), dir);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_EQ(r.err.find("does not balance power"), std::string::npos) << remedy << ": " << r.err;
-    const nlohmann::json report = nlohmann::json::parse(slurp(dir.path("r.json")));
-    EXPECT_TRUE(report["power_balance"]["balanced"].get<bool>()) << remedy;
-  }
-}
-
 }  // namespace
 }  // namespace hrad::test
