@@ -132,6 +132,45 @@ void point_factors(const FormFactorEvaluator& ev, const ElementNode& r, const Ve
   side->seen = side->unoccluded;
 }
 
+// Where s floats close in front of r (every vertex strictly in front of r's plane, within a
+// quarter of r's diameter), r's point factors towards s step along s's outline, and the points a
+// field is tested and fitted at (corners, edge midpoints, centre) may lie on it: a floor halved
+// from a room's corners puts them on the edges of a table modelled on the same grid, where the
+// field looks smooth. The largest deviation of the unoccluded factor from the biquadratic through
+// the points, at the four points u, v in {1/3, 2/3} of r's bilinear map (never on a halving
+// line); 0 elsewhere and on triangles.
+double off_grid_deviation(const FormFactorEvaluator& ev, const ElementNode& r, const Vec3& n, const ElementNode& s,
+                          const Side& side) {
+  if (side.points.count != 9) return 0.0;
+  const std::span<const Vec3> pr = r.polygon(), ps = s.polygon();
+  double diameter = 0.0;
+  for (const Vec3& a : pr)
+    for (const Vec3& b : pr) diameter = std::max(diameter, (a - b).norm());
+  double lo = INFINITY, hi = -INFINITY;
+  for (const Vec3& v : ps) {
+    const double h = (v - pr[0]).dot(n);
+    lo = std::min(lo, h);
+    hi = std::max(hi, h);
+  }
+  if (!(lo > 0.0) || hi > 0.25 * diameter) return 0.0;
+  // The biquadratic through the points (kSimpsonQuadUv: (u, v) in {0, 1/2, 1}), by Lagrange's
+  // basis on each axis.
+  const auto lagrange = [](int k, double t) {
+    return k == 0 ? 2.0 * (t - 0.5) * (t - 1.0) : k == 1 ? -4.0 * t * (t - 1.0) : 2.0 * t * (t - 0.5);
+  };
+  double deviation = 0.0;
+  for (const double u : {1.0 / 3.0, 2.0 / 3.0})
+    for (const double v : {1.0 / 3.0, 2.0 / 3.0}) {
+      const Vec3 x = (1 - u) * (1 - v) * pr[0] + u * (1 - v) * pr[1] + u * v * pr[2] + (1 - u) * v * pr[3];
+      double fit = 0.0;
+      for (int k = 0; k < 9; ++k)
+        fit += lagrange(static_cast<int>(2 * kSimpsonQuadUv[k][0]), u) *
+               lagrange(static_cast<int>(2 * kSimpsonQuadUv[k][1]), v) * side.factor[static_cast<std::size_t>(k)];
+      deviation = std::max(deviation, std::abs(ev.point_factor(x, n, ps) - fit));
+    }
+  return deviation;
+}
+
 // Visible fractions of the source from each point of a partly visible pair's side, by rays to
 // stratified points of the source tested against the pair's occluders only (a segment between
 // points of the pair lies in its shaft). Rays, not each point's own shaft: against a short occluder
@@ -532,7 +571,10 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   // The link carries the factor's shape over each side (push_pull.h); its error is bounded by how
   // far the visible point factors stray from a linear field.
   const double f_pq = exchange * fraction / p.area, f_qp = exchange * fraction / q.area;
-  const double field_p = field_error(sp, f_pq, true, fit), field_q = field_error(sq, f_qp, true, fit);
+  // Its points may lie on the outline of a side floating close in front of the other
+  // (off_grid_deviation()): the deviation at points off them counts too.
+  const double field_p = std::max(field_error(sp, f_pq, true, fit), off_grid_deviation(evaluator_, p, np, q, sp));
+  const double field_q = std::max(field_error(sq, f_qp, true, fit), off_grid_deviation(evaluator_, q, nq, p, sq));
   const double err_p = field_p + disagreement / p.area;
   const double err_q = field_q + disagreement / q.area;
   auto [e_p, e_q] = weighted(c.p, c.q, err_p, err_q);
