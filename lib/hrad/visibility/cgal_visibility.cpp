@@ -423,6 +423,15 @@ class CgalVisibility final : public Visibility {
     CGAL::Orientation orientation = CGAL::COLLINEAR;
   };
   std::vector<FanShadow> fan_shadow_;
+  /// A patch of two fan triangles whose shadow along its axis is a rectangle with sides along the
+  /// other two axes (a wall, floor or box face of an axis-aligned room): end_on() tests x's shadow
+  /// against the rectangle's bounds and the one diagonal, exactly as the triangles' six
+  /// orientations would decide.
+  struct RectangleShadow {
+    bool is = false;
+    double lo_i = 0.0, hi_i = 0.0, lo_j = 0.0, hi_j = 0.0;
+  };
+  std::vector<RectangleShadow> rectangle_shadow_;
   std::vector<char> patch_planar_;  ///< all vertices exactly coplanar
   std::vector<Point> vertices_;     ///< every patch vertex, for the convex-hull test
   double magnitude_ = 0.0;          ///< largest |coordinate| of the scene
@@ -483,6 +492,25 @@ CgalVisibility::CgalVisibility(const Scene& scene, const VisibilityOptions& opti
       f.orientation = CGAL::orientation(f.p[0], f.p[1], f.p[2]);
       fan_shadow_.push_back(f);
     }
+    RectangleShadow r;
+    const auto& pts = patch_points_[p];
+    if (patch_triangles_[p].second - patch_triangles_[p].first == 2 && pts.size() == 4) {
+      const FanShadow& a = fan_shadow_[static_cast<std::size_t>(patch_triangles_[p].first)];
+      const FanShadow& b = fan_shadow_[static_cast<std::size_t>(patch_triangles_[p].first + 1)];
+      r.lo_i = std::min({pts[0][i], pts[1][i], pts[2][i], pts[3][i]});
+      r.hi_i = std::max({pts[0][i], pts[1][i], pts[2][i], pts[3][i]});
+      r.lo_j = std::min({pts[0][j], pts[1][j], pts[2][j], pts[3][j]});
+      r.hi_j = std::max({pts[0][j], pts[1][j], pts[2][j], pts[3][j]});
+      // Each corner of the bounds is a vertex (the shadow is that rectangle), and the fan is the
+      // two triangles (0, 1, 2), (0, 2, 3) with the same orientation.
+      int corners = 0;
+      for (const double u : {r.lo_i, r.hi_i})
+        for (const double w : {r.lo_j, r.hi_j})
+          corners += std::any_of(pts.begin(), pts.end(), [&](const Point& x) { return x[i] == u && x[j] == w; });
+      r.is = corners == 4 && r.lo_i < r.hi_i && r.lo_j < r.hi_j && a.orientation != CGAL::COLLINEAR &&
+             a.orientation == b.orientation && a.p[0] == b.p[0] && a.p[2] == b.p[1];
+    }
+    rectangle_shadow_.push_back(r);
   }
   for (const Triangle& t : triangles_) {
     detail::Triangle3 c;
@@ -591,7 +619,17 @@ CgalVisibility::PatchEnd CgalVisibility::end_on(const Point& x, int patch) const
   // The fan triangle whose shadow along axis k holds x's (exact: dropping a coordinate is exact).
   const K::Point_2 q(x[i], x[j]);
   int fallback = -1;
-  for (int t = begin; t < end && e.triangle < 0; ++t) {
+  const RectangleShadow& rectangle = rectangle_shadow_[static_cast<std::size_t>(patch)];
+  if (rectangle.is) {
+    // Inside the rectangle, the first triangle (0, 1, 2) holds q unless q lies strictly across the
+    // diagonal 0-2 from vertex 1: its other two edges are sides of the rectangle.
+    fallback = begin;
+    if (x[i] >= rectangle.lo_i && x[i] <= rectangle.hi_i && x[j] >= rectangle.lo_j && x[j] <= rectangle.hi_j) {
+      const FanShadow& f = fan_shadow_[static_cast<std::size_t>(begin)];
+      e.triangle = CGAL::orientation(f.p[0], f.p[2], q) != f.orientation ? begin : begin + 1;
+    }
+  }
+  for (int t = rectangle.is ? end : begin; t < end && e.triangle < 0; ++t) {
     const FanShadow& f = fan_shadow_[static_cast<std::size_t>(t)];
     if (f.orientation == CGAL::COLLINEAR) continue;  // seen edge-on along k
     if (fallback < 0) fallback = t;
