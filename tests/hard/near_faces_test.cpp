@@ -139,8 +139,7 @@ TEST(NearFaces, ATableTopBalancesAtTheDefaultsWhereverItsOutlineFalls) {
   double lo = INFINITY, hi = -INFINITY;
   for (int k = 0; k < 9; ++k) {
     const double u = kSimpsonQuadUv[k][0], v = kSimpsonQuadUv[k][1];
-    const Vec3 x =
-        (1 - u) * (1 - v) * element[0] + u * (1 - v) * element[1] + u * v * element[2] + (1 - u) * v * element[3];
+    const Vec3 x = bilinear_point(element, u, v);
     f[static_cast<std::size_t>(k)] = point_to_polygon(x, up, bottom);
     lo = std::min(lo, f[static_cast<std::size_t>(k)]);
     hi = std::max(hi, f[static_cast<std::size_t>(k)]);
@@ -155,8 +154,7 @@ TEST(NearFaces, ATableTopBalancesAtTheDefaultsWhereverItsOutlineFalls) {
       for (int k = 0; k < 9; ++k)
         fit += lagrange(static_cast<int>(2 * kSimpsonQuadUv[k][0]), u) *
                lagrange(static_cast<int>(2 * kSimpsonQuadUv[k][1]), v) * f[static_cast<std::size_t>(k)];
-      const Vec3 x =
-          (1 - u) * (1 - v) * element[0] + u * (1 - v) * element[1] + u * v * element[2] + (1 - u) * v * element[3];
+      const Vec3 x = bilinear_point(element, u, v);
       worst = std::max(worst, std::abs(point_to_polygon(x, up, bottom) - fit));
     }
   std::printf("the 9 points' biquadratic off them: off by %.3f, the points' range %.3f\n", worst, hi - lo);

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "hrad/formfactor/gauss_legendre.h"
+#include "hrad/formfactor/simpson_rule.h"
 #include "hrad/geometry/polygon.h"
 
 namespace hrad {
@@ -70,11 +71,7 @@ bool near_edge_within(const Vec3& centre, double radius, int depth, std::span<co
   return false;
 }
 
-// The bilinear map of the quad p and its Jacobian's area element at (u, v).
-Vec3 bilinear(std::span<const Vec3> p, double u, double v) {
-  return (1 - u) * (1 - v) * p[0] + u * (1 - v) * p[1] + u * v * p[2] + (1 - u) * v * p[3];
-}
-
+// The area element of the bilinear map of the quad p (bilinear_point()) at (u, v).
 double bilinear_jacobian(std::span<const Vec3> p, double u, double v) {
   const Vec3 du = (1 - v) * (p[1] - p[0]) + v * (p[2] - p[3]);
   const Vec3 dv = (1 - u) * (p[3] - p[0]) + u * (p[2] - p[1]);
@@ -86,10 +83,10 @@ double bilinear_jacobian(std::span<const Vec3> p, double u, double v) {
 void graded_quad_cell(std::span<const Vec3> p, double u0, double u1, double v0, double v1, int depth,
                       std::span<const NearEdge> near, const detail::GaussRule& g,
                       std::vector<detail::WeightedPoint>& out) {
-  const Vec3 centre = bilinear(p, 0.5 * (u0 + u1), 0.5 * (v0 + v1));
+  const Vec3 centre = bilinear_point(p, 0.5 * (u0 + u1), 0.5 * (v0 + v1));
   double radius = 0.0;
   for (const auto& [u, v] : {std::pair{u0, v0}, {u1, v0}, {u1, v1}, {u0, v1}})
-    radius = std::max(radius, (bilinear(p, u, v) - centre).norm());
+    radius = std::max(radius, (bilinear_point(p, u, v) - centre).norm());
   if (near_edge_within(centre, radius, depth, near)) {
     const double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
     graded_quad_cell(p, u0, um, v0, vm, depth + 1, near, g, out);
@@ -102,8 +99,8 @@ void graded_quad_cell(std::span<const Vec3> p, double u0, double u1, double v0, 
     const double u = u0 + (u1 - u0) * 0.5 * (g.nodes[i] + 1.0);
     for (std::size_t j = 0; j < g.nodes.size(); ++j) {
       const double v = v0 + (v1 - v0) * 0.5 * (g.nodes[j] + 1.0);
-      out.push_back({bilinear(p, u, v), 0.25 * g.weights[i] * g.weights[j] * bilinear_jacobian(p, u, v) *
-                                            (u1 - u0) * (v1 - v0)});
+      out.push_back({bilinear_point(p, u, v),
+                     0.25 * g.weights[i] * g.weights[j] * bilinear_jacobian(p, u, v) * (u1 - u0) * (v1 - v0)});
     }
   }
 }

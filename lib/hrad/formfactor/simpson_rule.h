@@ -15,6 +15,10 @@ namespace hrad {
 /// x = (1-u)(1-v) v0 + u(1-v) v1 + uv v2 + (1-u)v v3.
 inline constexpr double kSimpsonQuadUv[9][2] = {{0, 0},   {1, 0},   {1, 1},   {0, 1},    {0.5, 0},
                                                 {1, 0.5}, {0.5, 1}, {0, 0.5}, {0.5, 0.5}};
+/// The point at (u, v) of the bilinear map of the quad (4 vertices) above.
+inline Vec3 bilinear_point(std::span<const Vec3> quad, double u, double v) {
+  return (1 - u) * (1 - v) * quad[0] + u * (1 - v) * quad[1] + u * v * quad[2] + (1 - u) * v * quad[3];
+}
 /// Where simpson_points() lie on a triangle: barycentric coordinates of each.
 inline constexpr double kSimpsonTriangleBary[7][3] = {
     {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}, {1.0 / 3, 1.0 / 3, 1.0 / 3}};

@@ -161,7 +161,7 @@ double off_grid_deviation(const FormFactorEvaluator& ev, const ElementNode& r, c
   double deviation = 0.0;
   for (const double u : {1.0 / 3.0, 2.0 / 3.0})
     for (const double v : {1.0 / 3.0, 2.0 / 3.0}) {
-      const Vec3 x = (1 - u) * (1 - v) * pr[0] + u * (1 - v) * pr[1] + u * v * pr[2] + (1 - u) * v * pr[3];
+      const Vec3 x = bilinear_point(pr, u, v);
       double fit = 0.0;
       for (int k = 0; k < 9; ++k)
         fit += lagrange(static_cast<int>(2 * kSimpsonQuadUv[k][0]), u) *
