@@ -175,11 +175,13 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     // A re-refinement that changed nothing leaves the last solution consistent with its links.
     if (passes > 1 && !changed) break;
     PushPull push_pull(scene, h, tree.get(), ctx.channels(), options.basis);
-    // The parts of elements split below aeps as sources, and linear leaves, send what their links'
-    // closure says (send_closure.h).
-    if ((options.source_levels > 0 || options.basis == Basis::kLinear) && ops.hsa) {
+    // The parts of elements split below aeps as sources, linear leaves, and with the HSA push the
+    // leaves under cluster links send what their links' closure says (send_closure.h).
+    const bool linear = options.basis == Basis::kLinear;
+    const bool under_clusters = tree != nullptr && options.push == Push::kHsa && !linear;
+    if ((options.source_levels > 0 || linear || under_clusters) && ops.hsa) {
       auto phase = ctx.phase("closure");
-      push_pull.set_send_closure(send_closures(h, *ops.hsa, push_pull, t.aeps, options.basis == Basis::kLinear));
+      push_pull.set_send_closure(send_closures(h, *ops.hsa, push_pull, t.aeps, linear, under_clusters));
     }
     NodeField field = push_pull.make_field();
     const std::vector<const LinkOperator*> all = ops.all();

@@ -1,12 +1,13 @@
 #include "hrad/solvers/send_closure.h"
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 
 namespace hrad {
 
 std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks& links, const PushPull& push_pull,
-                                       double aeps, bool linear) {
+                                       double aeps, bool linear, bool under_clusters) {
   const std::size_t n = h.size();
   // The element that cannot split above each node (kNoNode where none is above or the node's own
   // area still allows a split): children have larger ids than their parent.
@@ -23,7 +24,11 @@ std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks
     }
     below = below || block[i] != kNoNode;
   }
-  if (!below && !linear) return {};
+  // The leaves of a split patch under cluster links (below).
+  bool split_patches = false;
+  if (under_clusters)
+    for (int p = 0; p < h.patch_count() && !split_patches; ++p) split_patches = !h.node(h.root(p)).is_leaf();
+  if (!below && !linear && !split_patches) return {};
 
   std::vector<std::array<double, 9>> d = links.send_coefficients([&](NodeId r, const std::array<float, 9>& factor) {
     const std::array<double, 9>& w = push_pull.mean_weights(r);
@@ -65,11 +70,33 @@ std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks
     whole[static_cast<std::size_t>(block[i])] += e.area * (sigma[i] + clustered[i]);
     area[static_cast<std::size_t>(block[i])] += e.area;
   }
+  // Per patch, over the closed leaves of a split patch outside any block that cluster links reach:
+  // their whole closure and their area.
+  std::vector<double> patch_whole(static_cast<std::size_t>(h.patch_count()), 0.0),
+      patch_area(static_cast<std::size_t>(h.patch_count()), 0.0);
+  if (split_patches)
+    for (std::size_t i = 0; i < n; ++i) {
+      const ElementNode& e = h.node(static_cast<NodeId>(i));
+      if (!e.is_leaf() || block[i] != kNoNode || e.parent == kNoNode || !(clustered[i] > 0.0) ||
+          sigma[i] + clustered[i] < kClosedBlock)
+        continue;
+      patch_whole[static_cast<std::size_t>(e.patch)] += e.area * (sigma[i] + clustered[i]);
+      patch_area[static_cast<std::size_t>(e.patch)] += e.area;
+    }
   std::vector<SendClosure> closure(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (!h.node(static_cast<NodeId>(i)).is_leaf()) continue;
+    const ElementNode& leaf = h.node(static_cast<NodeId>(i));
+    if (!leaf.is_leaf()) continue;
     const std::size_t b = static_cast<std::size_t>(block[i]);
-    if (block[i] != kNoNode && whole[b] >= kClosedBlock * area[b]) {
+    const std::size_t patch = static_cast<std::size_t>(leaf.patch);
+    if (split_patches && block[i] == kNoNode && leaf.parent != kNoNode && clustered[i] > 0.0 &&
+        sigma[i] + clustered[i] >= kClosedBlock) {
+      // Each leaf sends, through the element links, what brings its whole closure to the mean of
+      // its patch's closed leaves (send_closure.h).
+      const double target = patch_whole[patch] / patch_area[patch] - clustered[i];
+      if (sigma[i] > 0.0 && target > 0.0 && std::abs(target / sigma[i] - 1.0) <= kLargestClosureMove)
+        closure[i] = {d[i], sigma[i], target};
+    } else if (block[i] != kNoNode && whole[b] >= kClosedBlock * area[b]) {
       closure[i] = {d[i], sigma[i], sum[b] / area[b]};
     } else if (linear && sigma[i] + clustered[i] >= kClosedBlock) {
       // A linear leaf sends its power times what a uniform radiosity on it sends: its slope only
