@@ -38,7 +38,7 @@ struct Link {
 
 struct RefineResult {
   std::vector<Link> links;
-  /// The pairs decided Decision::kUnseen (p, q as examined).
+  /// The pairs decided Decision::kUnseen (p, q as examined) that no shadow pass refined again.
   std::vector<std::pair<NodeRef, NodeRef>> unseen;
   std::uint64_t candidates = 0;  ///< pairs the oracle examined
   std::size_t splits = 0;        ///< split decisions (new or existing children)
