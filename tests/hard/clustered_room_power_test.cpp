@@ -110,7 +110,7 @@ TEST(ClusteredRoomPower, ClosedRoomsWithBlocksBalancePower) {
 // varies) with a grid of blocks low over the floor. A link with a cluster end reads the mean
 // radiosity of the element it joins, so each of its leaves sends the same share through it, while
 // the foot of a wall tile, behind the blocks, sees less of the far room than its top: the darker
-// foot sent 4% more than its power, the top 2-6% less, and these rooms lost 1.6e-3 to 2.6e-3 of
+// foot sent 4% more than its power, the top 2-6% less, and these rooms lost 2.0e-3 to 3.6e-3 of
 // their power. Each leaf of a split patch is closed to its patch's mean (send_closure.h).
 TEST(ClusteredRoomPower, ClosedRoomsOfSplitTilesWithBoxesBalancePower) {
   for (const auto& [a, c, n, gap, rho] :

@@ -29,16 +29,17 @@
 // each leaf below that element sends the same share through it per unit area, while what each
 // leaf's hemisphere gives the cluster varies: the foot of a wall tile, behind blocks low over the
 // floor, sees less of the far room than its top. The element links, resolved per leaf, then close
-// the leaves unevenly (the quarters of a 1 m tile in a room of boxes: 1.04 at the foot, 0.96 above;
-// 0.93 to 1.07 in rooms of floating blocks), and where the darker leaves send more the room loses
-// power: 1.6e-3 to 3.6e-3 of it in rooms of 1 m tiles with a grid of boxes, up to 1e-3 in the
-// generated 600-polygon offices (hrad scene generate --polygons 600 --seed 1..6). In a closed room every leaf's closure
-// is 1 and its patch's mean over the leaves is right (the links' factors are means over the elements they join). So
-// with constant leaves and the HSA push, each leaf of a split patch that cluster links reach and whose links take at
-// least kClosedBlock of its hemisphere sends, through the element links, what brings its whole closure to the mean of
-// those leaves of its patch: a quarter of the rooms' losses is left or less, the offices balance within 6e-4. Where
-// light leaves (a leaf below kClosedBlock) it sends as before; a solve without clusters has none of this (the Cornell
-// box is unchanged).
+// the leaves unevenly (the quarters of a 1 m tile in a room of boxes: 1.04 at the foot, 0.96
+// above; 0.93 to 1.07 in rooms of floating blocks), and where the darker leaves send more the room
+// loses power: 1.6e-3 to 3.6e-3 of it in rooms of 1 m tiles with a grid of boxes, up to 1e-3 in
+// the generated 600-polygon offices (hrad scene generate --polygons 600 --seed 1..6). In a closed
+// room every leaf's closure is 1 and its patch's mean over the leaves is right (the links' factors
+// are means over the elements they join). So with constant leaves and the HSA push, each leaf of a
+// split patch that cluster links reach and whose links take at least kClosedBlock of its
+// hemisphere sends, through the element links, what brings its whole closure to the mean of those
+// leaves of its patch: a quarter of the rooms' losses is left or less, the offices balance within
+// 6e-4. Where light leaves (a leaf below kClosedBlock) it sends as before; a solve without clusters
+// has none of this (the Cornell box is unchanged).
 //
 // A linear leaf at or above aeps has the same round trip within itself: what it receives through a
 // link follows the link's field over it, its slope follows, and it sends by the same field, so an
