@@ -25,6 +25,7 @@ void BM_UmbraBias(benchmark::State& state) {
   SolveOptions options;
   options.aeps = scene.total_area() / static_cast<double>(state.range(0));
   options.push = state.range(1) == 0 ? Push::kHsa : Push::kLeaf;
+  options.visibility_samples = static_cast<int>(state.range(2));
   for (auto _ : state) {
     Solution s;
     solve(scene, options, &s);
@@ -36,8 +37,10 @@ void BM_UmbraBias(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_UmbraBias)
-    ->ArgsProduct({{4000, 12000, 14000}, {0, 1}})
-    ->ArgNames({"total/aeps", "leaf_push"})
+    ->ArgsProduct({{4000, 12000, 14000}, {0, 1}, {kDefaultVisibilitySamples}})
+    // The umbras' dependence on the partly visible links' samples.
+    ->Args({4000, 0, 256})
+    ->ArgNames({"total/aeps", "leaf_push", "samples"})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 
