@@ -138,8 +138,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
 
   const double bound = radiosity_bound(scene);
   std::vector<Link> links;
-  std::vector<Link> standing;                       // links a re-refinement leaves as they are
-  std::vector<std::pair<NodeRef, NodeRef>> unseen;  // pairs no sampled ray saw through, so far
+  std::vector<Link> standing;      // links a re-refinement leaves as they are
+  std::vector<UnseenPair> unseen;  // pairs no sampled ray saw through, so far
   Operators ops;
   std::vector<PointValues> point_radiosity;  // the leaves' radiosity at their points (for display)
   std::uint64_t candidates = 0;
@@ -215,9 +215,9 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     // weights) saw through: a wall behind a lamp 1 mm from it is as bright as the lamp and sends
     // ~1% of its power to the room through the slit, which 16 point pairs a pair mostly miss
     // (notebooks_data/scenes/lamp_near_wall.obj cut along the lamp lost 0.6% of its power so).
-    std::erase_if(unseen, [&](const std::pair<NodeRef, NodeRef>& u) {
-      if (!is_raised(u.first) && !is_raised(u.second)) return false;
-      work.push_back({.p = u.first, .q = u.second});
+    std::erase_if(unseen, [&](const UnseenPair& u) {
+      if (!is_raised(u.p) && !is_raised(u.q)) return false;
+      work.push_back({.p = u.p, .q = u.q});
       return true;
     });
     if (work.empty()) break;

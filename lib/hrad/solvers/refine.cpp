@@ -28,7 +28,7 @@ namespace {
 // Refines `work` breadth-first until every pair is linked or dropped (see refine()).
 void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const RefinementOracle& oracle,
                    std::vector<Candidate> work, const std::function<void(std::string_view)>& progress,
-                   double progress_interval, RefineResult& result, std::vector<Link>& unseen) {
+                   double progress_interval, RefineResult& result) {
   std::vector<Candidate> next;
   int level = 0;
   while (!work.empty()) {
@@ -47,14 +47,7 @@ void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const Refinemen
         case Decision::kDrop:
           break;
         case Decision::kUnseen:
-          // No factor, but the shadow errors its test found, which count as a link's do (shadowed()).
-          unseen.push_back({.p = c.p,
-                            .q = c.q,
-                            .partial = true,
-                            .shadow_p = c.shadow_p,
-                            .shadow_q = c.shadow_q,
-                            .share_p = c.share_p,
-                            .share_q = c.share_q});
+          result.unseen.push_back({c.p, c.q, c.shadow_p, c.shadow_q, c.share_p, c.share_q});
           break;
         case Decision::kLink:
           result.links.push_back({c.p, c.q, c.f_pq, c.f_qp, c.partial, c.fraction, c.hidden_p, c.hidden_q, c.shadow_p,
@@ -106,15 +99,18 @@ void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const Refinemen
 // (rooms of 1 m tiles with floating blocks lost 2.9e-3 of their power at the default 64 samples
 // and 2.8% at 16).
 std::vector<Candidate> shadowed(const ElementHierarchy& h, const RefinementOracle& oracle, std::vector<Link>& links,
-                                std::vector<Link>& unseen) {
+                                std::vector<UnseenPair>& unseen) {
   std::vector<double> own(h.size(), 0.0), gathers(h.size(), 0.0);
-  for (const std::vector<Link>* list : {&links, &unseen})
-    for (const Link& l : *list) {
+  const auto add = [&](const auto& list) {
+    for (const auto& l : list) {
       if (!is_cluster(l.p))
         own[static_cast<std::size_t>(l.p)] += l.shadow_p, gathers[static_cast<std::size_t>(l.p)] += l.share_p;
       if (!is_cluster(l.q))
         own[static_cast<std::size_t>(l.q)] += l.shadow_q, gathers[static_cast<std::size_t>(l.q)] += l.share_q;
     }
+  };
+  add(links);
+  add(unseen);
   // Top-down sums (children have larger ids than their parent); a node is shadowed when some leaf
   // below it passes the budget and it can still split.
   std::vector<double> sum(h.size(), 0.0), total(h.size(), 0.0);
@@ -131,26 +127,23 @@ std::vector<Candidate> shadowed(const ElementHierarchy& h, const RefinementOracl
     if (over[i] && n.parent != kNoNode) over[static_cast<std::size_t>(n.parent)] = 1;
   }
   std::vector<Candidate> again;
-  for (std::vector<Link>* list : {&links, &unseen}) {
-    std::vector<Link> kept;
-    kept.reserve(list->size());
-    for (const Link& l : *list) {
+  const auto select = [&](auto& list) {
+    std::erase_if(list, [&](const auto& l) {
       const bool p =
           !is_cluster(l.p) && l.shadow_p > 0.0f && over[static_cast<std::size_t>(l.p)] && oracle.can_split(l.p);
       const bool q =
           !is_cluster(l.q) && l.shadow_q > 0.0f && over[static_cast<std::size_t>(l.q)] && oracle.can_split(l.q);
-      if (!p && !q) {
-        kept.push_back(l);
-        continue;
-      }
+      if (!p && !q) return false;
       Candidate c;
       c.p = p ? l.p : l.q;
       c.q = p ? l.q : l.p;
       c.split_p = true;
       again.push_back(c);
-    }
-    *list = std::move(kept);
-  }
+      return true;
+    });
+  };
+  select(links);
+  select(unseen);
   return again;
 }
 
@@ -161,17 +154,14 @@ RefineResult refine(ElementHierarchy& h, const ClusterTree* tree, const Refineme
                     double progress_interval_seconds) {
   RefineResult result;
   const std::size_t nodes_before = h.size();
-  std::vector<Link> unseen;
-  refine_levels(h, tree, oracle, std::move(work), progress, progress_interval_seconds, result, unseen);
+  refine_levels(h, tree, oracle, std::move(work), progress, progress_interval_seconds, result);
   for (int pass = 0; pass < kShadowPasses; ++pass) {
-    std::vector<Candidate> again = shadowed(h, oracle, result.links, unseen);
+    std::vector<Candidate> again = shadowed(h, oracle, result.links, result.unseen);
     if (again.empty()) break;
     if (progress)
       progress(fmt::format("refine: {} partly visible pairs under shadowed leaves refined again", again.size()));
-    refine_levels(h, tree, oracle, std::move(again), progress, progress_interval_seconds, result, unseen);
+    refine_levels(h, tree, oracle, std::move(again), progress, progress_interval_seconds, result);
   }
-  result.unseen.reserve(unseen.size());
-  for (const Link& u : unseen) result.unseen.emplace_back(u.p, u.q);
   result.new_nodes = h.size() - nodes_before;
   return result;
 }

@@ -36,10 +36,19 @@ struct Link {
   std::array<float, 9> source_p{}, source_q{};
 };
 
+/// A pair decided Decision::kUnseen (p, q as examined), with the shadow errors and shares its test
+/// found: they count in the shadow passes as a link's do (refine.cpp, shadowed()).
+struct UnseenPair {
+  NodeRef p = kNoNode;
+  NodeRef q = kNoNode;
+  float shadow_p = 0.0f, shadow_q = 0.0f;
+  float share_p = 0.0f, share_q = 0.0f;
+};
+
 struct RefineResult {
   std::vector<Link> links;
-  /// The pairs decided Decision::kUnseen (p, q as examined) that no shadow pass refined again.
-  std::vector<std::pair<NodeRef, NodeRef>> unseen;
+  /// The pairs decided Decision::kUnseen that no shadow pass refined again.
+  std::vector<UnseenPair> unseen;
   std::uint64_t candidates = 0;  ///< pairs the oracle examined
   std::size_t splits = 0;        ///< split decisions (new or existing children)
   std::size_t new_nodes = 0;     ///< elements the hierarchy grew by
