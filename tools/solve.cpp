@@ -34,6 +34,8 @@
 //                          polygon-to-polygon, ~1e-13, much slower); full and substructure only:
 //                          hierarchical radiosity always uses analytic (the report says so)
 //   --visibility-samples K point pairs per partially visible pair (default 64)
+//   --seed S               the sample stream (default 0): other values draw independent samples of
+//                          the same estimators, so a result's spread over seeds is its sampling noise
 //   --clustering auto|on|off
 //                          hierarchical: a cluster hierarchy above the input polygons, linked from
 //                          one root self-link (Smits, Arvo & Greenberg 1994), or plain HSA with every
@@ -112,6 +114,7 @@ void add_solve_command(CLI::App& app) {
                        clustering = "auto", push = "hsa", basis = "constant", report, out;
     double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
     int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0;
+    std::uint64_t seed = 0;
     std::string source_levels = "0";
     bool quiet = false, balance = false, cut_near_faces = false;
   };
@@ -141,6 +144,16 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--visibility-samples", args->visibility_samples,
                   "Point pairs per partially visible pair (default 64; hierarchical links scale their own counts by it "
                   "/ 64, at least 4)");
+  cmd->add_option("--seed", args->seed,
+                  "Sample stream (default 0): another value draws independent samples of every sampled "
+                  "quantity, so the spread of a result over seeds is its sampling noise")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            return !v.empty() && v.find_first_not_of("0123456789") == std::string::npos
+                       ? std::string()
+                       : "must be an integer >= 0, got " + v;
+          },
+          "UINT"));
   cmd->add_option("--clustering", args->clustering,
                   "Hierarchical: auto | on | off (default auto: on from 200 patches)");
   cmd->add_option("--push", args->push,
@@ -190,6 +203,7 @@ void add_solve_command(CLI::App& app) {
     o.tolerance = args->tolerance;
     o.max_iterations = args->max_iterations;
     o.visibility_samples = args->visibility_samples;
+    o.seed = args->seed;
     o.threads = args->threads;
     if (!args->quiet) o.progress = [](std::string_view line) { std::cerr << "hrad solve: " << line << "\n"; };
     validate_options(o);

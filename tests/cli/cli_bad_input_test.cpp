@@ -90,6 +90,7 @@ const BadInput kCases[] = {
      "solve " + kScene + " --visibility-samples 0 --out {d}/s.ply",
      "--visibility-samples"},
     {"solve_negative_threads", {}, "solve " + kScene + " --threads -1 --out {d}/s.ply", "--threads"},
+    {"solve_negative_seed", {}, "solve " + kScene + " --seed -3 --out {d}/s.ply", "--seed"},
     {"solve_zero_exposure", {}, "solve " + kScene + " --exposure 0 --out {d}/s.ply", "--exposure"},
     {"solve_missing_scene", {}, "solve {d}/missing.obj --out {d}/s.ply --report {d}/r.json", "missing.obj"},
     {"solve_reflectance_one",

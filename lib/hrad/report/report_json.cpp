@@ -32,6 +32,7 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
                   {"effects", std::string(to_string(used.effects))},
                   {"kernel", std::string(to_string(used.kernel))},
                   {"visibility_samples", used.visibility_samples},
+                  {"seed", used.seed},
                   {"clustering", std::string(to_string(used.clustering))},
                   {"push", std::string(to_string(used.push))},
                   {"basis", std::string(to_string(used.basis))},

@@ -54,12 +54,13 @@ bool FormFactorEvaluator::separated(std::span<const Vec3> receiver, std::span<co
 }
 
 FormFactorEvaluator::FormFactorEvaluator(const Scene& scene, const Effects& effects, const Visibility* visibility,
-                                         int visibility_samples, FormFactorKernel kernel)
+                                         int visibility_samples, FormFactorKernel kernel, std::uint64_t seed)
     : scene_(scene),
       effects_(effects),
       visibility_(visibility),
       visibility_samples_(visibility_samples),
-      kernel_(kernel) {
+      kernel_(kernel),
+      seed_(seed) {
   assert(visibility_ != nullptr || !effects_.visibility);
   assert(visibility_samples_ > 0);
 }
@@ -377,7 +378,11 @@ std::uint64_t FormFactorEvaluator::pair_seed(std::span<const Vec3> a, int pa, st
   };
   add(a, pa);
   add(b, pb);
-  return h;
+  return stream_seed(h);
+}
+
+std::uint64_t FormFactorEvaluator::stream_seed(std::uint64_t seed) const {
+  return seed_ == 0 ? seed : detail::mix_seed(seed, seed_);
 }
 
 Work FormFactorEvaluator::work() const {

@@ -116,7 +116,7 @@ class FormFactorEvaluator {
   /// `visibility` may be null only when `effects.visibility` is false. `visibility_samples` is the
   /// number of point pairs sampled for a partially visible pair (> 0).
   FormFactorEvaluator(const Scene& scene, const Effects& effects, const Visibility* visibility, int visibility_samples,
-                      FormFactorKernel kernel = FormFactorKernel::kPointContour);
+                      FormFactorKernel kernel = FormFactorKernel::kPointContour, std::uint64_t seed = 0);
 
   /// The polygons the factors will be taken to (the solver's elements or shooting patches), each
   /// on its patch: the contour rule grades a receiver's points towards their edges where their
@@ -198,12 +198,15 @@ class FormFactorEvaluator {
   /// a patch half hidden by furniture inside its own cluster must get half of an unobstructed
   /// patch's share (hsa_links.h). `reached`, when given, gets the patch of `to` at the far end of
   /// every ray that passed.
-  ShadedPatches shaded_surfaces(const SurfaceSampler& from, const SurfaceSampler& to, int rays,
-                                std::uint64_t seed, std::vector<int>* reached = nullptr) const;
+  ShadedPatches shaded_surfaces(const SurfaceSampler& from, const SurfaceSampler& to, int rays, std::uint64_t seed,
+                                std::vector<int>* reached = nullptr) const;
 
   /// Deterministic seed for sampling a pair of polygons on patches pa and pb (from their geometry,
-  /// relative to their patches: a scaled scene draws the same samples).
+  /// relative to their patches: a scaled scene draws the same samples), mixed with the stream's
+  /// seed (SolveOptions::seed) when it is not 0.
   std::uint64_t pair_seed(std::span<const Vec3> a, int pa, std::span<const Vec3> b, int pb) const;
+  /// A seed of the caller's own mixed with the stream's seed when it is not 0.
+  std::uint64_t stream_seed(std::uint64_t seed) const;
 
   /// Counters so far (segment queries from the visibility oracle, which counts every ray).
   Work work() const;
@@ -246,6 +249,7 @@ class FormFactorEvaluator {
   const Visibility* visibility_;
   int visibility_samples_;
   FormFactorKernel kernel_;
+  std::uint64_t seed_;
   mutable WorkCounter evaluations_;
   mutable WorkCounter point_factors_;
   mutable WorkCounter shaft_queries_;

@@ -705,8 +705,8 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
     const auto [b_p, b_q] = weighted(c.p, c.q, far.value * variation, far.reverse * variation);
     if (!far.facing_away && std::max(b_p, b_q) <= 1.0) {
       const NodeSurfaces surfaces_p(geometry_, c.p, sp.area), surfaces_q(geometry_, c.q, sq.area);
-      const std::uint64_t seed = detail::mix_seed(
-          (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.p)) << 32) | static_cast<std::uint32_t>(c.q), 7);
+      const std::uint64_t seed = evaluator_.stream_seed(detail::mix_seed(
+          (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.p)) << 32) | static_cast<std::uint32_t>(c.q), 7));
       // The test's factor only decides whether the pair is linked; what a link carries comes from
       // samples of its own (below), as many as --visibility-samples. So the test draws a fraction
       // of them, and the link's sampling error is the test's scaled to the link's count.

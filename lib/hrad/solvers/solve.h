@@ -112,6 +112,11 @@ struct SolveOptions {
   FormFactorKernel kernel = FormFactorKernel::kPointContour;
   /// Point pairs sampled per partially visible pair (the visibility oracle's `samples`).
   int visibility_samples = kDefaultVisibilitySamples;
+  /// The sample stream: every sampled quantity (visible fractions, cluster factors) draws from
+  /// seeds of the pair's geometry mixed with this, so 0 gives the default solution bit for bit and
+  /// other values give independent draws of the same estimators: the spread of a result over a few
+  /// seeds is its sampling noise.
+  std::uint64_t seed = 0;
   /// Gather the irradiance even where nothing reflects (every reflectance 0), so that
   /// Solution::face_irradiance holds H for radiant exchange (black surfaces still absorb).
   bool irradiance = false;

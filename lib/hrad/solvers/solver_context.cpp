@@ -39,7 +39,7 @@ SolverContext::SolverContext(const Scene& scene, const SolveOptions& options, Me
     summary_.effects = analyse_effects(scene, options.effects, visibility_.get(), options.irradiance);
   }
   evaluator_ = std::make_unique<FormFactorEvaluator>(scene, summary_.effects, visibility_.get(),
-                                                     options.visibility_samples, options.kernel);
+                                                     options.visibility_samples, options.kernel, options.seed);
 }
 
 SolverContext::~SolverContext() = default;
