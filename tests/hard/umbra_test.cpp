@@ -3,10 +3,15 @@
 // compared with the final gather of the same solution at points across each leaf, an independent
 // one-bounce estimate with exact point factors and visibility from each point
 // (tests/support/umbra_bias.h). The HSA push bounds both the receiver's field and the weighting of
-// the source's radiosity (refinement_oracle.h), so no surface's umbra is more than 0.5% brighter on
-// average, nor more than 1% darker.
+// the source's radiosity, and a partly visible link puts what its points' rays missed where they
+// passed (refinement_oracle.cpp shape_of()), so no surface's umbra is more than 0.5% brighter on
+// average, nor more than 1% darker. The links' visible fractions are sampled: the bias is the mean
+// over two sample streams (SolveOptions::seed), whose noise on the red wall is about 0.15% a solve
+// (umbra_benchmark).
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <map>
 #include <string>
 
 #include "hrad/io/obj_reader.h"
@@ -21,14 +26,22 @@ TEST(Umbra, CornellBoxUmbrasAreWithinHalfAPercentOfTheirFinalGather) {
   const Scene scene = read_obj_scene(test::source_dir() + "/notebooks_data/scenes/cornell_box.obj");
   SolveOptions options;
   options.aeps = scene.total_area() / 4000.0;
-  Solution s;
-  solve(scene, options, &s);
-  const auto groups = test::umbra_bias(scene, s);
+  constexpr int kSeeds = 2;
+  std::map<std::string, test::UmbraBias> groups;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    options.seed = static_cast<std::uint64_t>(seed);
+    Solution s;
+    solve(scene, options, &s);
+    for (const auto& [name, g] : test::umbra_bias(scene, s)) {
+      groups[name].bias += g.bias / kSeeds;
+      groups[name].leaves += g.leaves;
+    }
+  }
   // The floor beside both blocks, the red wall behind the tall one and the blocks' own faces have
   // umbras in this scene; each must be found and measured.
   for (const char* name : {"floor", "left_wall_red", "short_block", "tall_block"}) {
     ASSERT_TRUE(groups.count(name)) << name << " has no umbra leaves";
-    EXPECT_GT(groups.at(name).leaves, 10) << name;
+    EXPECT_GT(groups.at(name).leaves, 10 * kSeeds) << name;
   }
   for (const auto& [name, g] : groups) {
     EXPECT_LE(g.bias, 0.005) << name << ": " << g.leaves << " umbra leaves";
