@@ -281,9 +281,9 @@ double shadow_variation(const Side& side, double fraction) {
 // pulled towards `mean` as far as needed to keep every point >= 0: `receives`. A triangle's centroid
 // value is the quadratic's through the other six (link_operator.h PointValues).
 //
-// A partly visible link whose mean is above its points' (`partly_visible`): the link's own point
-// pairs saw more of the source than the points' rays (one a point), so some points whose ray was
-// blocked see part of it, and which ones the rays cannot tell. Added evenly, the difference lands
+// A partly visible link to constant leaves whose mean is above its points' (`partly_visible`): the
+// link's own point pairs saw more of the source than the points' rays (one a point), so some points
+// whose ray was blocked see part of it, and which ones the rays cannot tell. Added evenly, the difference lands
 // on points in the umbra too, and the pull (when the mean is below) scales instead: so umbra points
 // got light on average, not 0 (the Cornell box's red wall in the tall block's shadow +0.53% above a
 // final gather at 6k elements, mean of seven sample streams). There the visible point factors are
@@ -697,12 +697,16 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   }
   c.shaped = true;
   std::array<float, 9> sends_p{}, sends_q{};
-  shape_of(sp, c.f_pq, c.partial, &c.shape_p, &sends_p);
-  shape_of(sq, c.f_qp, c.partial, &c.shape_q, &sends_q);
+  // Constant leaves only: a linear leaf keeps the scaled shape's slope, steep where one point saw
+  // the source (SPLASH-2's room: its linear reference at aeps total/16000 went from 0.64% to 1.59%
+  // against the Monte Carlo ruler, and its linear solves took up to 11x the iterations' time).
+  const bool scaled = c.partial && !tol_.linear_leaves;
+  shape_of(sp, c.f_pq, scaled, &c.shape_p, &sends_p);
+  shape_of(sq, c.f_qp, scaled, &c.shape_q, &sends_q);
   if (apart) {
     std::array<float, 9> receives{};  // already in c.shape_p, c.shape_q
-    shape_of(sp_send, c.f_pq, c.partial, &receives, &sends_p);
-    shape_of(sq_send, c.f_qp, c.partial, &receives, &sends_q);
+    shape_of(sp_send, c.f_pq, scaled, &receives, &sends_p);
+    shape_of(sq_send, c.f_qp, scaled, &receives, &sends_q);
   }
   source_weights_of(sp, sends_p, linked * fraction, &c.source_p);
   source_weights_of(sq, sends_q, linked * fraction, &c.source_q);

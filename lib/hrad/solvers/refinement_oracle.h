@@ -68,8 +68,9 @@ struct Candidate {
   /// gathers through it, in the same units.
   float share_p = 0.0f, share_q = 0.0f;
   /// Between elements: the factor's shape over each side, F(x -> q) V(x, q) at its points
-  /// (link_operator.h PointValues) moved to the link's mean factor, which the HSA push carries down
-  /// to the leaves.
+  /// (link_operator.h PointValues) moved to the link's mean factor (with constant leaves, a partly
+  /// visible link's visible point factors scaled up to it where its mean is the larger:
+  /// refinement_oracle.cpp shape_of()), which the HSA push carries down to the leaves.
   bool shaped = false;
   std::array<float, 9> shape_p{}, shape_q{};
   /// Between elements: what p sends through the link is sum_i source_p[i] m_i over the moments of
