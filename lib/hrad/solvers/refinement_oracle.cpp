@@ -283,15 +283,16 @@ double shadow_variation(const Side& side, double fraction) {
 //
 // A partly visible link to constant leaves whose mean is above its points' (`partly_visible`): the
 // link's own point pairs saw more of the source than the points' rays (one a point), so some points
-// whose ray was blocked see part of it, and which ones the rays cannot tell. Added evenly, the difference lands
-// on points in the umbra too, and the pull (when the mean is below) scales instead: so umbra points
-// got light on average, not 0 (the Cornell box's red wall in the tall block's shadow +0.53% above a
-// final gather at 6k elements, mean of seven sample streams). There the visible point factors are
-// scaled up to the mean instead, light going where rays passed (a penumbra lies beside them), by
-// at most kLargestShapeScale, the rest added evenly: a point alone visible would otherwise carry the
-// link, and the quadratic through it and its blocked neighbours overshoot (umbra_benchmark at 2k
-// elements, red wall, four seeds: +0.24% added evenly, +0.15% scaled by at most 4, +0.06% by 8,
-// -0.13% by 16 with single leaves 5% off).
+// whose ray was blocked see part of it, and which ones the rays cannot tell. Added evenly, the
+// difference lands on points in the umbra too, and the pull (when the mean is below) scales
+// instead: so umbra points got light on average, not 0 (the Cornell box's red wall in the tall
+// block's shadow +0.53% above a final gather at 6k elements, mean of seven sample streams). There
+// the visible point factors are scaled up to the mean instead, light going where rays passed (a
+// penumbra lies beside them), by at most kLargestShapeScale, the rest added evenly: a point alone
+// visible would otherwise carry the link, and the quadratic through it and its blocked neighbours
+// overshoot (umbra_benchmark at 2k elements, red wall, four seeds: +0.24% added evenly, +0.00%
+// scaled by at most 8; scaling only sides whose points saw a shadow, +0.15% by at most 4, +0.06% by
+// 8, -0.13% by 16 with single leaves 5% off).
 //
 // The side receives by the nonnegative shape: an irradiance < 0 at a point would make a linear
 // leaf's corner < 0, and the pull keeps the mean, so the side gathers the link's exchange either
