@@ -76,6 +76,7 @@
 #include "hrad/io/scene_reader.h"
 #include "hrad/io/solution_ply.h"
 #include "hrad/render/isolux_image.h"
+#include "seed_option.h"
 
 namespace hrad::cli {
 namespace {
@@ -140,7 +141,7 @@ void add_probe_command(CLI::App& app) {
   cmd->add_option("--gather-sources", args->gather_sources,
                   "links | all: gather through the solution's links or over every patch (default: links if stored)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
-  cmd->add_option("--seed", args->seed, "Seed of the visibility samples (default 1)");
+  cmd->add_option("--seed", args->seed, "Seed of the visibility samples (default 1)")->check(cli::seed_validator());
   cmd->add_option(
       "--emission-units", args->emission_units,
       "Unit of the scene's emission: lm/m2 or W/m2 (adds illuminance_lux; default: the scene's declaration)");

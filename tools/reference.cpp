@@ -36,9 +36,10 @@
 #include "csv_cells.h"
 #include "hrad/core/error.h"
 #include "hrad/io/atomic_file.h"
-#include "hrad/io/scene_reader.h"
 #include "hrad/io/points_csv.h"
+#include "hrad/io/scene_reader.h"
 #include "hrad/reference/reference.h"
+#include "seed_option.h"
 
 namespace hrad::cli {
 namespace {
@@ -67,7 +68,7 @@ void add_reference_command(CLI::App& app) {
   cmd->add_flag("--faces", args->faces, "Area-mean radiosity of every input face");
   cmd->add_option("--out", args->out, "Write the results (CSV) here")->required();
   cmd->add_option("--samples", args->samples, "Paths per point / points per face (default 1024)");
-  cmd->add_option("--seed", args->seed, "Random seed (default 1)");
+  cmd->add_option("--seed", args->seed, "Random seed (default 1)")->check(cli::seed_validator());
   cmd->add_option("--max-depth", args->max_depth, "Longest path in segments, 0 = no limit (default)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_flag("--quiet", args->quiet, "No progress on stderr");

@@ -75,6 +75,7 @@
 #include "hrad/io/scene_reader.h"
 #include "hrad/io/solution_ply.h"
 #include "hrad/render/render.h"
+#include "seed_option.h"
 
 namespace hrad::cli {
 namespace {
@@ -146,7 +147,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--gather-sources", args->gather_sources,
                   "links | all: gather through the solution's links or over every patch (default: links if stored)");
   cmd->add_option("--threads", args->threads, "Worker threads of the gather (default: all cores)");
-  cmd->add_option("--seed", args->seed, "Seed of the jitter and the gather's rays (default 1)");
+  cmd->add_option("--seed", args->seed, "Seed of the jitter and the gather's rays (default 1)")
+      ->check(cli::seed_validator());
   cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
   cmd->add_option("--camera", args->camera,
                   "px,py,pz,tx,ty,tz,ux,uy,uz,fov_deg: position, look-at, up, vertical field of view (degrees)");

@@ -19,9 +19,7 @@
 //   --kind K       office (default), pillars, shelves, city or urban
 //   --seed S       placement seed (default 1)
 //   --out FILE     the OBJ file to write
-#include <charconv>
 #include <iostream>
-#include <limits>
 
 #include <fmt/format.h>
 
@@ -31,6 +29,7 @@
 #include "hrad/experiments/scene_generator.h"
 #include "hrad/experiments/urban_generator.h"
 #include "hrad/io/atomic_file.h"
+#include "seed_option.h"
 
 namespace hrad::cli {
 
@@ -42,25 +41,17 @@ void add_scene_command(CLI::App& app) {
       "Write a scale scene (office, pillar hall, warehouse or city) with about N input polygons (OBJ + MTL)");
   struct Args {
     int polygons = 0;
-    std::string seed = "1";
+    std::uint64_t seed = 1;
     std::string out, kind = "office";
   };
   auto args = std::make_shared<Args>();
   gen->add_option("--polygons", args->polygons, "Input polygons wanted (64 .. 10000000)")->required();
-  gen->add_option("--seed", args->seed, "Placement seed (default 1)");
+  gen->add_option("--seed", args->seed, "Placement seed (default 1)")->check(cli::seed_validator());
   gen->add_option("--kind", args->kind,
                   "office (default) | pillars (closed rooms) | shelves (a closed warehouse) | city (blocks under an "
                   "emitting sky) | urban (buildings on a ground, for view factors)");
   gen->add_option("--out", args->out, "OBJ file to write (the .mtl goes beside it)")->required();
   gen->callback([args] {
-    // Parsed here, not by CLI11 (which accepted 99999999999999999999): a whole number that fits 64 bits.
-    std::uint64_t seed = 0;
-    const char* first = args->seed.data();
-    const char* last = first + args->seed.size();
-    const auto [end, ec] = std::from_chars(first, last, seed);
-    if (args->seed.empty() || ec != std::errc() || end != last)
-      throw Error(fmt::format("--seed must be a whole number in [0, {}], got '{}'",
-                              std::numeric_limits<std::uint64_t>::max(), args->seed));
     if (args->out.empty()) throw Error("--out must name a file");
     // Each polygon holds its corners, group and material (~200 bytes) while the OBJ is written:
     // 512 bytes is an upper bound. Refused up front rather than std::bad_alloc.
@@ -70,14 +61,15 @@ void add_scene_command(CLI::App& app) {
                               args->polygons, format_bytes(bytes), format_bytes(available)));
     SceneGeneratorOptions o;
     o.polygons = args->polygons;
-    o.seed = seed;
+    o.seed = args->seed;
     if (args->kind != "urban") o.layout = parse_scene_layout(args->kind);
     OutputFiles outputs;
     outputs.declare("--out", args->out);
     outputs.declare("the material library beside --out", generated_mtl_path(args->out));
     const AllocationScope allocating(fmt::format("the {} generated polygons", args->polygons),
                                      "ask for fewer --polygons");
-    const GeneratedScene scene = args->kind == "urban" ? generate_urban({args->polygons, seed}) : generate_scene(o);
+    const GeneratedScene scene =
+        args->kind == "urban" ? generate_urban({args->polygons, args->seed}) : generate_scene(o);
     write_generated_scene(scene, args->out, [](std::string_view line) { std::cerr << "hrad " << line << "\n"; });
     outputs.commit();
     std::cout << fmt::format("{}: {} polygons, {} x {} cells, room {} x {} x {} m\n", args->out, scene.faces.size(),

@@ -86,6 +86,7 @@
 #include "hrad/report/report_json.h"
 #include "hrad/solvers/solve.h"
 #include "hrad/solvers/solved_hierarchy.h"
+#include "seed_option.h"
 
 namespace hrad::cli {
 
@@ -147,13 +148,7 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--seed", args->seed,
                   "Sample stream (default 0): another value draws independent samples of every sampled "
                   "quantity, so the spread of a result over seeds is its sampling noise")
-      ->check(CLI::Validator(
-          [](std::string& v) {
-            return !v.empty() && v.find_first_not_of("0123456789") == std::string::npos
-                       ? std::string()
-                       : "must be an integer >= 0, got " + v;
-          },
-          "UINT"));
+      ->check(cli::seed_validator());
   cmd->add_option("--clustering", args->clustering,
                   "Hierarchical: auto | on | off (default auto: on from 200 patches)");
   cmd->add_option("--push", args->push,
