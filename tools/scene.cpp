@@ -1,4 +1,5 @@
-// hrad scene generate --polygons N [--kind office|pillars|shelves|city|urban] [--seed S] --out FILE.obj
+// hrad scene generate --polygons N [--kind office|pillars|shelves|city|urban] [--seed S] [--triangles]
+//                     --out FILE.obj
 //
 // Writes a scale scene for benchmarks (lib/hrad/experiments/scene_generator.h), the same for the
 // same N, kind and seed:
@@ -18,6 +19,7 @@
 //   --polygons N   input polygons wanted (64 .. 10,000,000)
 //   --kind K       office (default), pillars, shelves, city or urban
 //   --seed S       placement seed (default 1)
+//   --triangles    each polygon as a fan of triangles (a triangle mesh, as exporters write it)
 //   --out FILE     the OBJ file to write
 #include <iostream>
 
@@ -43,6 +45,7 @@ void add_scene_command(CLI::App& app) {
     int polygons = 0;
     std::uint64_t seed = 1;
     std::string out, kind = "office";
+    bool triangles = false;
   };
   auto args = std::make_shared<Args>();
   gen->add_option("--polygons", args->polygons, "Input polygons wanted (64 .. 10000000)")->required();
@@ -51,11 +54,13 @@ void add_scene_command(CLI::App& app) {
                   "office (default) | pillars (closed rooms) | shelves (a closed warehouse) | city (blocks under an "
                   "emitting sky) | urban (buildings on a ground, for view factors)");
   gen->add_option("--out", args->out, "OBJ file to write (the .mtl goes beside it)")->required();
+  gen->add_flag("--triangles", args->triangles,
+                "Write each polygon as triangles (a triangle mesh, as exporters write)");
   gen->callback([args] {
     if (args->out.empty()) throw Error("--out must name a file");
     // Each polygon holds its corners, group and material (~200 bytes) while the OBJ is written:
     // 512 bytes is an upper bound. Refused up front rather than std::bad_alloc.
-    const double bytes = 512.0 * args->polygons, available = available_memory_bytes();
+    const double bytes = 512.0 * args->polygons * (args->triangles ? 2 : 1), available = available_memory_bytes();
     if (available > 0.0 && bytes > 0.8 * available)
       throw Error(fmt::format("--polygons: {} polygons need about {} and this process may use {}: ask for fewer",
                               args->polygons, format_bytes(bytes), format_bytes(available)));
@@ -68,8 +73,8 @@ void add_scene_command(CLI::App& app) {
     outputs.declare("the material library beside --out", generated_mtl_path(args->out));
     const AllocationScope allocating(fmt::format("the {} generated polygons", args->polygons),
                                      "ask for fewer --polygons");
-    const GeneratedScene scene =
-        args->kind == "urban" ? generate_urban({args->polygons, args->seed}) : generate_scene(o);
+    GeneratedScene scene = args->kind == "urban" ? generate_urban({args->polygons, args->seed}) : generate_scene(o);
+    if (args->triangles) scene = triangulated(std::move(scene));
     write_generated_scene(scene, args->out, [](std::string_view line) { std::cerr << "hrad " << line << "\n"; });
     outputs.commit();
     std::cout << fmt::format("{}: {} polygons, {} x {} cells, room {} x {} x {} m\n", args->out, scene.faces.size(),

@@ -71,25 +71,34 @@ TEST(SceneGenerator, BadCountsNameTheOption) {
   }
 }
 
-TEST(SceneGenerator, FileReadsBackAsTheSameScene) {
-  test::TempDir dir;
-  const GeneratedScene g = generate_scene({500, 11});
-  const std::string path = dir.path("office.obj");
-  write_generated_scene(g, path);
-  std::vector<std::string> warnings;
-  const Scene read = read_obj_scene(path, &warnings);
-  EXPECT_TRUE(warnings.empty()) << warnings.front();
-  const Scene direct = to_scene(g);
-  ASSERT_EQ(read.patches.size(), g.faces.size());  // every quad planar and convex: one patch each
+// A scene read back from the generator's file against the generated one, face for face.
+void expect_same_scene(const Scene& read, const Scene& direct) {
+  ASSERT_EQ(read.patches.size(), direct.patches.size());  // every face planar and convex: one patch each
   ASSERT_EQ(read.materials.size(), direct.materials.size());
   for (std::size_t i = 0; i < read.patches.size(); ++i) {
-    for (int k = 0; k < 4; ++k)  // written with 17 digits (round trip); the reader's parser is within 1 ulp
+    ASSERT_EQ(read.patches[i].vertices.size(), direct.patches[i].vertices.size()) << i;
+    for (std::size_t k = 0; k < direct.patches[i].vertices.size(); ++k)  // 17 digits; the parser is within 1 ulp
       ASSERT_LT((read.patches[i].vertices[k] - direct.patches[i].vertices[k]).norm(), 1e-14) << i;
     EXPECT_NEAR(read.patches[i].area, direct.patches[i].area, 1e-12);
     EXPECT_EQ(read.material_of(read.patches[i]).name, direct.material_of(direct.patches[i]).name);
     EXPECT_EQ(read.patches[i].group, direct.patches[i].group);
   }
   EXPECT_GE(read.emitter_count(), 1);
+}
+
+TEST(SceneGenerator, FileReadsBackAsTheSameScene) {
+  for (const bool triangles : {false, true}) {
+    SCOPED_TRACE(triangles ? "triangles" : "quads");
+    test::TempDir dir;
+    const GeneratedScene quads = generate_scene({500, 11});
+    const GeneratedScene g = triangles ? triangulated(quads) : quads;
+    const std::string path = dir.path("office.obj");
+    write_generated_scene(g, path);
+    std::vector<std::string> warnings;
+    const Scene read = read_obj_scene(path, &warnings);
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    expect_same_scene(read, to_scene(g));
+  }
 }
 
 TEST(SceneGenerator, RoomTilesCoverTheBoundaryFacingInAndFurnitureIsClosedBoxesInside) {
@@ -179,8 +188,11 @@ void expect_closed(const Scene& s) {
     const Patch& p = s.patches[i];
     for (int k = 0; k < 6; ++k) {
       const double u = uniform(), v = uniform();
-      const Vec3 x = (1 - u) * (1 - v) * p.vertices[0] + u * (1 - v) * p.vertices[1] + u * v * p.vertices[2] +
-                     (1 - u) * v * p.vertices[3];
+      const Vec3 x = p.vertices.size() == 3
+                         ? Vec3((1 - std::sqrt(u)) * p.vertices[0] + std::sqrt(u) * (1 - v) * p.vertices[1] +
+                                std::sqrt(u) * v * p.vertices[2])
+                         : Vec3((1 - u) * (1 - v) * p.vertices[0] + u * (1 - v) * p.vertices[1] +
+                                u * v * p.vertices[2] + (1 - u) * v * p.vertices[3]);
       Vec3 d;
       do d = Vec3(2 * uniform() - 1, 2 * uniform() - 1, 2 * uniform() - 1);
       while (d.squaredNorm() > 1.0 || d.squaredNorm() < 1e-6);
@@ -204,6 +216,31 @@ TEST(SceneGenerator, EveryRayLeavingAFrontFaceHitsAFrontFace) {
 TEST(SceneGenerator, TheWarehouseIsClosedToo) {
   const Scene s = to_scene(generate_scene({700, 9, SceneLayout::kShelves}));
   ASSERT_GT(s.patches.size(), 500u);  // two rows of racks or more
+  expect_closed(s);
+}
+
+TEST(SceneGenerator, AsTrianglesEveryFaceKeepsItsAreaAndFrontAndTheSceneStaysClosed) {
+  // A fan that reversed a triangle, dropped one or left a sliver uncovered would open the scene
+  // (a ray through the gap or onto a back face) or change a face's area.
+  const GeneratedScene quads = generate_scene({300, 4});
+  const GeneratedScene tris = triangulated(quads);
+  const Scene s = to_scene(tris);
+  std::size_t corners = 0;
+  for (const GeneratedScene::Face& f : quads.faces) corners += f.vertices.size() - 2;
+  ASSERT_EQ(tris.faces.size(), corners);
+  std::size_t k = 0;
+  for (const GeneratedScene::Face& f : quads.faces) {
+    const Vec3 normal = newell_normal(f.vertices).normalized();
+    double area = 0.0;
+    for (std::size_t t = 0; t + 2 < f.vertices.size(); ++t, ++k) {
+      const Patch& p = s.patches[k];
+      ASSERT_EQ(p.vertices.size(), 3u);
+      EXPECT_GT(p.normal.dot(normal), 1.0 - 1e-12) << k;
+      EXPECT_EQ(p.material, f.material);
+      area += p.area;
+    }
+    EXPECT_NEAR(area, polygon_area(f.vertices), 1e-12 * area);
+  }
   expect_closed(s);
 }
 

@@ -411,6 +411,21 @@ GeneratedScene generate_scene(const SceneGeneratorOptions& options) {
   return s;
 }
 
+GeneratedScene triangulated(GeneratedScene g) {
+  std::vector<GeneratedScene::Face> faces;
+  faces.reserve(2 * g.faces.size());
+  for (GeneratedScene::Face& f : g.faces) {
+    if (f.vertices.size() <= 3) {
+      faces.push_back(std::move(f));
+      continue;
+    }
+    for (std::size_t k = 1; k + 1 < f.vertices.size(); ++k)
+      faces.push_back({{f.vertices[0], f.vertices[k], f.vertices[k + 1]}, f.material, f.group});
+  }
+  g.faces = std::move(faces);
+  return g;
+}
+
 Scene to_scene(const GeneratedScene& g) {
   Scene scene;
   scene.path = "generated";
@@ -457,7 +472,9 @@ void write_generated_scene(const GeneratedScene& g, const std::string& obj_path,
       if (f.material != material)
         out << "usemtl " << g.materials[static_cast<std::size_t>(material = f.material)].name << "\n";
       for (const Vec3& v : f.vertices) out << fmt::format("v {} {} {}\n", v.x(), v.y(), v.z());
-      out << "f -4 -3 -2 -1\n";
+      out << "f";
+      for (int k = static_cast<int>(f.vertices.size()); k >= 1; --k) out << " -" << k;
+      out << "\n";
     }
     progress.finish();
   });

@@ -71,6 +71,11 @@ inline constexpr double kGeneratedGridSlack = 0.4;
 /// or > 10,000,000.
 GeneratedScene generate_scene(const SceneGeneratorOptions& options);
 
+/// Each face of more than three corners as a fan of triangles from its first corner, in its
+/// orientation (the generated faces are convex): the scene as a triangle mesh, as exporters write
+/// it (`hrad scene generate --triangles`).
+GeneratedScene triangulated(GeneratedScene generated);
+
 /// The same as a Scene (one patch per face, normals and areas computed), for benchmarks without files.
 Scene to_scene(const GeneratedScene& generated);
 
