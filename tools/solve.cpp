@@ -248,7 +248,7 @@ void add_solve_command(CLI::App& app) {
       if (!balance->balanced()) {
         warnings.push_back(
             fmt::format("{}: warning: the solution does not balance power: {} of the emitted power is unaccounted for "
-                        "(allowed {:.3g}: "
+                        "in its worst colour channel (the power line gives the channels' mean; allowed {:.3g}: "
                         "{} plus {} standard errors); {}",
                         scene.path, fmt::format("{:.3g}", balance->relative_residual()), balance->allowed(),
                         kPowerBalanceTolerance, kPowerBalanceStandardErrors, balance_advice(summary)));
