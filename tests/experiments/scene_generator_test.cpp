@@ -13,6 +13,7 @@
 #include "hrad/geometry/polygon.h"
 #include "hrad/io/obj_reader.h"
 #include "hrad/solvers/solve.h"
+#include "hrad/visibility/sampling.h"
 
 namespace hrad {
 namespace {
@@ -188,11 +189,7 @@ void expect_closed(const Scene& s) {
     const Patch& p = s.patches[i];
     for (int k = 0; k < 6; ++k) {
       const double u = uniform(), v = uniform();
-      const Vec3 x = p.vertices.size() == 3
-                         ? Vec3((1 - std::sqrt(u)) * p.vertices[0] + std::sqrt(u) * (1 - v) * p.vertices[1] +
-                                std::sqrt(u) * v * p.vertices[2])
-                         : Vec3((1 - u) * (1 - v) * p.vertices[0] + u * (1 - v) * p.vertices[1] +
-                                u * v * p.vertices[2] + (1 - u) * v * p.vertices[3]);
+      const Vec3 x = detail::polygon_point(p.vertices, u, v);
       Vec3 d;
       do d = Vec3(2 * uniform() - 1, 2 * uniform() - 1, 2 * uniform() - 1);
       while (d.squaredNorm() > 1.0 || d.squaredNorm() < 1e-6);
@@ -225,9 +222,9 @@ TEST(SceneGenerator, AsTrianglesEveryFaceKeepsItsAreaAndFrontAndTheSceneStaysClo
   const GeneratedScene quads = generate_scene({300, 4});
   const GeneratedScene tris = triangulated(quads);
   const Scene s = to_scene(tris);
-  std::size_t corners = 0;
-  for (const GeneratedScene::Face& f : quads.faces) corners += f.vertices.size() - 2;
-  ASSERT_EQ(tris.faces.size(), corners);
+  std::size_t triangles = 0;
+  for (const GeneratedScene::Face& f : quads.faces) triangles += f.vertices.size() - 2;
+  ASSERT_EQ(tris.faces.size(), triangles);
   std::size_t k = 0;
   for (const GeneratedScene::Face& f : quads.faces) {
     const Vec3 normal = newell_normal(f.vertices).normalized();
