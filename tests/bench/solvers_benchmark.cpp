@@ -103,7 +103,7 @@ void BM_PairVisibility(benchmark::State& state) {
   double sum = 0.0;
   for (auto _ : state)
     for (std::uint64_t k = 1; k <= 1000; ++k)
-      sum += ev.pair_visibility(s.patches[0].vertices, 0, s.patches[1].vertices, 1, nullptr, 64, k);
+      sum += ev.pair_visibility(s.patches[0].vertices, 0, s.patches[1].vertices, 1, nullptr, 64, k).fraction;
   const double rays = static_cast<double>(ev.work().segment_queries);
   state.counters["rays"] = rays;
   state.counters["seconds_per_ray"] =

@@ -88,10 +88,10 @@ FormFactorEstimate FormFactorEvaluator::estimate(std::span<const Vec3> receiver,
       return e;
     }
     if (c == PairClass::kPartial) {
-      const auto [fraction, error] = weighted_visibility(receiver, receiver_patch, source, source_patch);
+      const PairVisibility v = pair_visibility(receiver, receiver_patch, source, source_patch);
       e.partial = true;
-      e.visibility = fraction;
-      e.error = error;
+      e.visibility = v.fraction;
+      e.error = v.error;
     }
     const PairFormFactor f = unoccluded(receiver, receiver_patch, source, source_patch, with_reverse);
     e.unoccluded = f.from_to;
@@ -106,17 +106,10 @@ FormFactorEstimate FormFactorEvaluator::estimate(std::span<const Vec3> receiver,
   return e;
 }
 
-double FormFactorEvaluator::pair_visibility(std::span<const Vec3> receiver, int receiver_patch,
-                                            std::span<const Vec3> source, int source_patch,
-                                            const std::vector<int>* occluders, int samples,
-                                            std::uint64_t stream) const {
-  return weighted_visibility(receiver, receiver_patch, source, source_patch, occluders, samples, stream).first;
-}
-
-std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<const Vec3> receiver, int receiver_patch,
-                                                                   std::span<const Vec3> source, int source_patch,
-                                                                   const std::vector<int>* occluders, int samples,
-                                                                   std::uint64_t stream) const {
+PairVisibility FormFactorEvaluator::pair_visibility(std::span<const Vec3> receiver, int receiver_patch,
+                                                    std::span<const Vec3> source, int source_patch,
+                                                    const std::vector<int>* occluders, int samples,
+                                                    std::uint64_t stream) const {
   // Ray-traced form factors (Wallace, Elmquist & Haines 1989): the visible fraction weighted by the
   // point-to-point kernel, so that the near parts of a pair count as much as they contribute to F.
   // The kernel is symmetric, so the fraction is the same in both directions and reciprocity is kept.
@@ -134,7 +127,11 @@ std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<con
   thread_local std::vector<Vec3> facing_receiver, facing_source;
   front_part(receiver, source, facing_receiver);
   front_part(source, receiver, facing_source);
-  if (facing_receiver.size() < 3 || facing_source.size() < 3) return {0.0, detail::fraction_error(0, 0)};
+  PairVisibility v;
+  if (facing_receiver.size() < 3 || facing_source.size() < 3) {
+    v.error = detail::fraction_error(0, 0);
+    return v;
+  }
   const detail::PolygonSampler sx(facing_receiver), sy(facing_source);
   const Vec3 nx = newell_normal(receiver).normalized();
   const Vec3& ny = scene_.patches[static_cast<std::size_t>(source_patch)].normal;
@@ -151,7 +148,6 @@ std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<con
   // (Arvo 1995): weight Omega(x) cos(theta_x) <= 2 pi, the kernel's integral over the source.
   const bool near = !separated(receiver, source, 1.0);
   double visible = 0.0, weight = 0.0;
-  int visible_rays = 0, rays = 0;
   for (int i = 0; i < n; ++i) {
     const std::size_t k = static_cast<std::size_t>(i);
     const Vec3 x = sx.point(ux[k].x(), ux[k].y());
@@ -171,15 +167,21 @@ std::pair<double, double> FormFactorEvaluator::weighted_visibility(std::span<con
                                              : visibility_->sight(x, receiver_patch, y, source_patch);
     if (sight == Sight::kFacingAway) continue;
     if (!near) w = detail::point_pair_kernel(nx, ny, y - x);
-    ++rays;
+    ++v.rays;
     weight += w;
-    if (sight == Sight::kVisible) ++visible_rays, visible += w;
+    if (sight == Sight::kVisible) ++v.visible_rays, visible += w;
   }
-  const double error = detail::fraction_error(visible_rays, rays);
-  // No ray found a facing pair that carries weight: nothing is known to be seen. (A fraction over
-  // rays that carry no weight is no estimate: it gave closed boxes their light.)
-  if (!(weight > 0.0)) return {0.0, error};
-  return {visible / weight, error};
+  v.error = detail::fraction_error(v.visible_rays, v.rays);
+  v.visible = visible;
+  v.weight = weight;
+  // E[w]: near pairs take x uniform on the front part A'x and w integrates the kernel over the
+  // source, so E[w] = pi A F / A'x; far pairs take both points uniform, E[w] = pi A F / (A'x A'y).
+  v.per_exchange = static_cast<double>(n) * std::numbers::pi /
+                   (polygon_area(facing_receiver) * (near ? 1.0 : polygon_area(facing_source)));
+  // No ray passed, or none carried weight: nothing is known to be seen. (A fraction over rays that
+  // carry no weight is no estimate: it gave closed boxes their light.)
+  if (v.visible_rays > 0 && visible > 0.0) v.fraction = visible / weight;
+  return v;
 }
 
 KernelVisibility FormFactorEvaluator::visibility_from_point(const Vec3& x, const Vec3& nx, int patch_x,

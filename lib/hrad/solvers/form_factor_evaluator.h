@@ -104,6 +104,31 @@ struct KernelVisibility {
   int rays = 0;  ///< rays that carry weight (both points in front of each other)
 };
 
+/// A partly visible pair's kernel-weighted visible fraction (FormFactorEvaluator::pair_visibility())
+/// from n point pairs with kernel weights w and outcomes V (1: unblocked).
+struct PairVisibility {
+  /// The ratio sum w V / sum w: in [0, 1], but biased by O(1 / n) where w and V correlate (near
+  /// parts that see each other, far parts shaded; Cochran 1977, Sampling techniques, ch. 6); 0 when
+  /// no ray passed.
+  double fraction = 0.0;
+  double error = 0.0;         ///< detail::fraction_error() of the rays' outcomes
+  int rays = 0;               ///< point pairs that carried weight
+  int visible_rays = 0;       ///< of which unblocked
+  double visible = 0.0;       ///< sum w V
+  double weight = 0.0;        ///< sum w
+  double per_exchange = 0.0;  ///< E[sum w] per unit of the pair's unoccluded exchange A F
+
+  /// The control-variate estimate (mean(w V) - c (mean(w) - W)) / W, W = E[w] from the pair's exact
+  /// unoccluded exchange and c an estimate of the fraction independent of these rays: unbiased,
+  /// though it may stray outside [0, 1] by its noise (Owen 2013, Monte Carlo theory, methods and
+  /// examples, ch. 8). 0 when no ray passed, as `fraction`: nothing seen is linked.
+  double controlled(double exchange, double coefficient) const {
+    if (!(visible > 0.0) || !(exchange > 0.0) || !(per_exchange > 0.0)) return fraction;
+    const double expected = per_exchange * exchange;
+    return (visible - coefficient * (weight - expected)) / expected;
+  }
+};
+
 /// Heights over a polygon's plane below this fraction of its diameter are contact (rounding of
 /// touching vertices), not floating.
 inline constexpr double kContactTolerance = 1e-9;
@@ -177,9 +202,9 @@ class FormFactorEvaluator {
   /// deterministic in the pair's geometry and `stream`: another stream draws point pairs independent
   /// of stream 0's (a link's factor must not come from the samples that decided to keep it); only
   /// `occluders` can block when not null.
-  double pair_visibility(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
-                         int source_patch, const std::vector<int>* occluders, int samples = 0,
-                         std::uint64_t stream = 0) const;
+  PairVisibility pair_visibility(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
+                                 int source_patch, const std::vector<int>* occluders = nullptr, int samples = 0,
+                                 std::uint64_t stream = 0) const;
 
   /// Factor between the surfaces of two nodes by `samples` stratified point pairs (uniform by area
   /// on each side): F(p -> q) = A_q mean(cos cos V / (pi r^2)), the visibility V by rays through the
@@ -238,12 +263,6 @@ class FormFactorEvaluator {
   // The edges of the sources on patches floating in front of `patch`, and of the emitters' sources
   // lying in its plane, found once.
   const std::vector<NearEdge>& floating_edges(int patch) const;
-  // Kernel-weighted visible fraction of a partially visible pair and its error estimate.
-  std::pair<double, double> weighted_visibility(std::span<const Vec3> receiver, int receiver_patch,
-                                                std::span<const Vec3> source, int source_patch,
-                                                const std::vector<int>* occluders = nullptr, int samples = 0,
-                                                std::uint64_t stream = 0) const;
-
   const Scene& scene_;
   Effects effects_;
   const Visibility* visibility_;
