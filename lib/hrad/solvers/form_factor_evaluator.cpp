@@ -109,7 +109,7 @@ FormFactorEstimate FormFactorEvaluator::estimate(std::span<const Vec3> receiver,
 PairVisibility FormFactorEvaluator::pair_visibility(std::span<const Vec3> receiver, int receiver_patch,
                                                     std::span<const Vec3> source, int source_patch,
                                                     const std::vector<int>* occluders, int samples,
-                                                    std::uint64_t stream) const {
+                                                    std::uint64_t stream, bool halves) const {
   // Ray-traced form factors (Wallace, Elmquist & Haines 1989): the visible fraction weighted by the
   // point-to-point kernel, so that the near parts of a pair count as much as they contribute to F.
   // The kernel is symmetric, so the fraction is the same in both directions and reciprocity is kept.
@@ -135,11 +135,20 @@ PairVisibility FormFactorEvaluator::pair_visibility(std::span<const Vec3> receiv
   const detail::PolygonSampler sx(facing_receiver), sy(facing_source);
   const Vec3 nx = newell_normal(receiver).normalized();
   const Vec3& ny = scene_.patches[static_cast<std::size_t>(source_patch)].normal;
-  thread_local std::vector<Vec2> ux, uy;
+  thread_local std::vector<Vec2> ux, uy, second;
   detail::Rng rx(detail::mix_seed(seed, 1)), ry(detail::mix_seed(seed, 2));
   // stratified_unit_square() returns its cells in random order: ux[i] and uy[i] are a random pairing.
-  detail::stratified_unit_square(n, rx, &ux);
-  detail::stratified_unit_square(n, ry, &uy);
+  const int first = halves && n >= 2 ? n / 2 : n;
+  detail::stratified_unit_square(first, rx, &ux);
+  detail::stratified_unit_square(first, ry, &uy);
+  if (first < n) {
+    // The second half from streams of its own: independent of the first.
+    detail::Rng rx2(detail::mix_seed(seed, 3)), ry2(detail::mix_seed(seed, 4));
+    detail::stratified_unit_square(n - first, rx2, &second);
+    ux.insert(ux.end(), second.begin(), second.end());
+    detail::stratified_unit_square(n - first, ry2, &second);
+    uy.insert(uy.end(), second.begin(), second.end());
+  }
   // Polygons closer than their size (a shelf board 5 mm from its upright, a lamp at a wall): the
   // kernel peaks where they come close, area-uniform pairs seldom land there, and the ratio of
   // sums then mostly weighs the far parts: biased, and to one side where the near parts see each
@@ -148,6 +157,8 @@ PairVisibility FormFactorEvaluator::pair_visibility(std::span<const Vec3> receiv
   // (Arvo 1995): weight Omega(x) cos(theta_x) <= 2 pi, the kernel's integral over the source.
   const bool near = !separated(receiver, source, 1.0);
   double visible = 0.0, weight = 0.0;
+  v.halves[0].pairs = first;
+  v.halves[1].pairs = n - first;
   for (int i = 0; i < n; ++i) {
     const std::size_t k = static_cast<std::size_t>(i);
     const Vec3 x = sx.point(ux[k].x(), ux[k].y());
@@ -169,15 +180,17 @@ PairVisibility FormFactorEvaluator::pair_visibility(std::span<const Vec3> receiv
     if (!near) w = detail::point_pair_kernel(nx, ny, y - x);
     ++v.rays;
     weight += w;
-    if (sight == Sight::kVisible) ++v.visible_rays, visible += w;
+    PairVisibility::Half& half = v.halves[i < first ? 0 : 1];
+    half.weight += w;
+    if (sight == Sight::kVisible) ++v.visible_rays, visible += w, half.visible += w;
   }
   v.error = detail::fraction_error(v.visible_rays, v.rays);
+  v.pairs = n;
   v.visible = visible;
-  v.weight = weight;
   // E[w]: near pairs take x uniform on the front part A'x and w integrates the kernel over the
   // source, so E[w] = pi A F / A'x; far pairs take both points uniform, E[w] = pi A F / (A'x A'y).
-  v.per_exchange = static_cast<double>(n) * std::numbers::pi /
-                   (polygon_area(facing_receiver) * (near ? 1.0 : polygon_area(facing_source)));
+  v.mean_weight_per_exchange =
+      std::numbers::pi / (polygon_area(facing_receiver) * (near ? 1.0 : polygon_area(facing_source)));
   // No ray passed, or none carried weight: nothing is known to be seen. (A fraction over rays that
   // carry no weight is no estimate: it gave closed boxes their light.)
   if (v.visible_rays > 0 && visible > 0.0) v.fraction = visible / weight;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <mutex>
@@ -105,27 +106,50 @@ struct KernelVisibility {
 };
 
 /// A partly visible pair's kernel-weighted visible fraction (FormFactorEvaluator::pair_visibility())
-/// from n point pairs with kernel weights w and outcomes V (1: unblocked).
+/// from n point pairs with kernel weights w_i and outcomes V_i (1: unblocked).
 struct PairVisibility {
   /// The ratio sum w V / sum w: in [0, 1], but biased by O(1 / n) where w and V correlate (near
   /// parts that see each other, far parts shaded; Cochran 1977, Sampling techniques, ch. 6); 0 when
   /// no ray passed.
   double fraction = 0.0;
-  double error = 0.0;         ///< detail::fraction_error() of the rays' outcomes
-  int rays = 0;               ///< point pairs that carried weight
-  int visible_rays = 0;       ///< of which unblocked
-  double visible = 0.0;       ///< sum w V
-  double weight = 0.0;        ///< sum w
-  double per_exchange = 0.0;  ///< E[sum w] per unit of the pair's unoccluded exchange A F
+  double error = 0.0;    ///< detail::fraction_error() of the rays' outcomes
+  int rays = 0;          ///< point pairs that carried weight
+  int visible_rays = 0;  ///< of which unblocked
+  int pairs = 0;         ///< n: point pairs drawn
+  double visible = 0.0;  ///< sum w V
+  /// E[w] per unit of the pair's unoccluded exchange A F: pi / A'x (near pairs) or pi / (A'x A'y).
+  double mean_weight_per_exchange = 0.0;
+  /// sum w V, sum w and n of each of two independent halves of the pairs (halves[1].pairs = 0:
+  /// drawn as one set).
+  struct Half {
+    double visible = 0.0, weight = 0.0;
+    int pairs = 0;
+  };
+  std::array<Half, 2> halves{};
 
-  /// The control-variate estimate (mean(w V) - c (mean(w) - W)) / W, W = E[w] from the pair's exact
-  /// unoccluded exchange and c an estimate of the fraction independent of these rays: unbiased,
-  /// though it may stray outside [0, 1] by its noise (Owen 2013, Monte Carlo theory, methods and
-  /// examples, ch. 8). 0 when no ray passed, as `fraction`: nothing seen is linked.
+  /// The control-variate estimate (sum w V - c (sum w - n W)) / (n W), W = E[w] from the pair's
+  /// exact unoccluded exchange: unbiased for any coefficient c independent of the pairs it is
+  /// applied to (Owen 2013, Monte Carlo theory, methods and examples, ch. 8). Drawn as two
+  /// independent halves, each half takes the other's ratio as c (cross-fitting), which is about the
+  /// fraction, so the estimate is about as precise as the ratio; `coefficient` (an estimate
+  /// independent of these pairs) serves where a half carries no weight or there are no halves. It
+  /// may stray outside [0, 1] by its noise. 0 when no ray passed, as `fraction`: nothing seen is
+  /// linked.
   double controlled(double exchange, double coefficient) const {
-    if (!(visible > 0.0) || !(exchange > 0.0) || !(per_exchange > 0.0)) return fraction;
-    const double expected = per_exchange * exchange;
-    return (visible - coefficient * (weight - expected)) / expected;
+    if (!(visible > 0.0) || !(exchange > 0.0) || !(mean_weight_per_exchange > 0.0)) return fraction;
+    const double w = mean_weight_per_exchange * exchange;
+    if (halves[1].pairs == 0) {
+      const Half& all = halves[0];
+      return (all.visible - coefficient * (all.weight - all.pairs * w)) / (all.pairs * w);
+    }
+    double sum = 0.0;
+    for (int k = 0; k < 2; ++k) {
+      const Half& self = halves[static_cast<std::size_t>(k)];
+      const Half& other = halves[static_cast<std::size_t>(1 - k)];
+      const double c = other.weight > 0.0 ? other.visible / other.weight : coefficient;
+      sum += self.visible - c * (self.weight - self.pairs * w);
+    }
+    return sum / (pairs * w);
   }
 };
 
@@ -202,9 +226,11 @@ class FormFactorEvaluator {
   /// deterministic in the pair's geometry and `stream`: another stream draws point pairs independent
   /// of stream 0's (a link's factor must not come from the samples that decided to keep it); only
   /// `occluders` can block when not null.
+  /// With `halves`, the pairs are drawn as two independent stratified halves
+  /// (PairVisibility::controlled()).
   PairVisibility pair_visibility(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
                                  int source_patch, const std::vector<int>* occluders = nullptr, int samples = 0,
-                                 std::uint64_t stream = 0) const;
+                                 std::uint64_t stream = 0, bool halves = false) const;
 
   /// Factor between the surfaces of two nodes by `samples` stratified point pairs (uniform by area
   /// on each side): F(p -> q) = A_q mean(cos cos V / (pi r^2)), the visibility V by rays through the

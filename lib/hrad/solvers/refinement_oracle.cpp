@@ -674,19 +674,18 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
                                                      std::pow(gathered / (2.0 * kGatherNoise), 2)));
     const int samples = static_cast<int>(std::clamp(wanted, std::max(kFewestLinkSamples, scale * kLeastLinkSamples),
                                                     static_cast<double>(kMostLinkSamples * pair_samples_)));
-    const PairVisibility seen =
-        evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, among, samples, kLinkedFractionStream);
+    const PairVisibility seen = evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, among, samples,
+                                                           kLinkedFractionStream, true);
     if (!(seen.visible > 0.0)) {
       // Every linked sample was blocked too: nothing to link, as far as these samples know.
       c.decision = Decision::kUnseen;
       return;
     }
-    // With the link's exact exchange the fraction is unbiased (PairVisibility::controlled()), the
-    // test's fraction, from rays of its own, the control's coefficient. The ratio of sums loses
-    // power where the kernel weights and the outcomes correlate, most beside faces a hair in front
-    // of others: a generated 700-polygon warehouse as 1,524 triangles, every surface emitting
-    // uniformly, lost 8.8e-4 to 1.9e-3 of its power over four sample streams so (this estimate:
-    // -1.4e-4 to 1.2e-3).
+    // With the link's exact exchange the fraction is unbiased (PairVisibility::controlled(); the
+    // test's fraction, from rays of its own, where a half of the pairs carries no weight). The
+    // ratio of sums loses power where the kernel weights and the outcomes correlate, most beside
+    // faces a hair in front of others: a generated 700-polygon warehouse as 1,524 triangles, every
+    // surface emitting uniformly, lost 8.8e-4 to 1.9e-3 of its power over four sample streams so.
     linked = linked_exchange();
     fraction = seen.controlled(linked, fraction);
     if (!classified && seen.visible_rays == seen.rays && sp.seen == sp.unoccluded && sq.seen == sq.unoccluded &&
