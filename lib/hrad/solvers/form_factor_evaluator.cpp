@@ -185,8 +185,6 @@ PairVisibility FormFactorEvaluator::pair_visibility(std::span<const Vec3> receiv
     if (sight == Sight::kVisible) ++v.visible_rays, visible += w, half.visible += w;
   }
   v.error = detail::fraction_error(v.visible_rays, v.rays);
-  v.pairs = n;
-  v.visible = visible;
   // E[w]: near pairs take x uniform on the front part A'x and w integrates the kernel over the
   // source, so E[w] = pi A F / A'x; far pairs take both points uniform, E[w] = pi A F / (A'x A'y).
   v.mean_weight_per_exchange =

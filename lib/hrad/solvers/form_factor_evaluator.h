@@ -115,8 +115,6 @@ struct PairVisibility {
   double error = 0.0;    ///< detail::fraction_error() of the rays' outcomes
   int rays = 0;          ///< point pairs that carried weight
   int visible_rays = 0;  ///< of which unblocked
-  int pairs = 0;         ///< n: point pairs drawn
-  double visible = 0.0;  ///< sum w V
   /// E[w] per unit of the pair's unoccluded exchange A F: pi / A'x (near pairs) or pi / (A'x A'y).
   double mean_weight_per_exchange = 0.0;
   /// sum w V, sum w and n of each of two independent halves of the pairs (halves[1].pairs = 0:
@@ -127,6 +125,9 @@ struct PairVisibility {
   };
   std::array<Half, 2> halves{};
 
+  /// sum w V over all the pairs.
+  double visible() const { return halves[0].visible + halves[1].visible; }
+
   /// The control-variate estimate (sum w V - c (sum w - n W)) / (n W), W = E[w] from the pair's
   /// exact unoccluded exchange: unbiased for any coefficient c independent of the pairs it is
   /// applied to (Owen 2013, Monte Carlo theory, methods and examples, ch. 8). Drawn as two
@@ -136,7 +137,7 @@ struct PairVisibility {
   /// may stray outside [0, 1] by its noise. 0 when no ray passed, as `fraction`: nothing seen is
   /// linked.
   double controlled(double exchange, double coefficient) const {
-    if (!(visible > 0.0) || !(exchange > 0.0) || !(mean_weight_per_exchange > 0.0)) return fraction;
+    if (!(visible() > 0.0) || !(exchange > 0.0) || !(mean_weight_per_exchange > 0.0)) return fraction;
     const double w = mean_weight_per_exchange * exchange;
     if (halves[1].pairs == 0) {
       const Half& all = halves[0];
@@ -149,7 +150,7 @@ struct PairVisibility {
       const double c = other.weight > 0.0 ? other.visible / other.weight : coefficient;
       sum += self.visible - c * (self.weight - self.pairs * w);
     }
-    return sum / (pairs * w);
+    return sum / ((halves[0].pairs + halves[1].pairs) * w);
   }
 };
 

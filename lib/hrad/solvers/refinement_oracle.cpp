@@ -676,7 +676,7 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
                                                     static_cast<double>(kMostLinkSamples * pair_samples_)));
     const PairVisibility seen = evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, among, samples,
                                                            kLinkedFractionStream, true);
-    if (!(seen.visible > 0.0)) {
+    if (!(seen.visible() > 0.0)) {
       // Every linked sample was blocked too: nothing to link, as far as these samples know.
       c.decision = Decision::kUnseen;
       return;
