@@ -36,6 +36,8 @@
 //   --visibility-samples K point pairs per partially visible pair (default 64)
 //   --seed S               the sample stream (default 0): other values draw independent samples of
 //                          the same estimators, so a result's spread over seeds is its sampling noise
+//   --power-noise S        hierarchical: the standard deviation over sample streams the power
+//                          balance should have (default 0: the default sampling)
 //   --clustering auto|on|off
 //                          hierarchical: a cluster hierarchy above the input polygons, linked from
 //                          one root self-link (Smits, Arvo & Greenberg 1994), or plain HSA with every
@@ -113,7 +115,8 @@ void add_solve_command(CLI::App& app) {
   struct Args {
     std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", kernel = "contour",
                        clustering = "auto", push = "hsa", basis = "constant", report, out;
-    double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0;
+    double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0,
+           power_noise = 0.0;
     int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0;
     std::uint64_t seed = 0;
     std::string source_levels = "0";
@@ -149,6 +152,9 @@ void add_solve_command(CLI::App& app) {
                   "Sample stream (default 0): another value draws independent samples of every sampled "
                   "quantity, so the spread of a result over seeds is its sampling noise")
       ->check(cli::seed_validator());
+  cmd->add_option("--power-noise", args->power_noise,
+                  "Hierarchical: the standard deviation over --seed streams the power balance should have, e.g. 2.5e-4 "
+                  "(more point pairs and cluster rays where the power flows; default 0: the default sampling)");
   cmd->add_option("--clustering", args->clustering,
                   "Hierarchical: auto | on | off (default auto: on from 200 patches)");
   cmd->add_option("--push", args->push,
@@ -199,6 +205,7 @@ void add_solve_command(CLI::App& app) {
     o.max_iterations = args->max_iterations;
     o.visibility_samples = args->visibility_samples;
     o.seed = args->seed;
+    o.power_noise = args->power_noise;
     o.threads = args->threads;
     if (!args->quiet) o.progress = [](std::string_view line) { std::cerr << "hrad solve: " << line << "\n"; };
     validate_options(o);

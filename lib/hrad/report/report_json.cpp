@@ -33,6 +33,7 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
                   {"kernel", std::string(to_string(used.kernel))},
                   {"visibility_samples", used.visibility_samples},
                   {"seed", used.seed},
+                  {"power_noise", used.power_noise},
                   {"clustering", std::string(to_string(used.clustering))},
                   {"push", std::string(to_string(used.push))},
                   {"basis", std::string(to_string(used.basis))},

@@ -115,7 +115,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
                               options.push == Push::kHsa,
                               options.basis == Basis::kLinear,
                               options.source_levels,
-                              {}};
+                              {},
+                              options.power_noise};
   if (options.source_levels > 0 && options.source_levels_near_lamps) {
     // Sources split below aeps only on the patches near a bright lamp (SolveOptions).
     const std::vector<std::vector<int>> near = near_bright_emitters(scene, kLampReach);

@@ -67,6 +67,15 @@ constexpr std::uint64_t kSendShapeStream = 5;
 // rays.
 constexpr double kPowerNoise = 2.5e-5;
 constexpr int kMostLinkSamples = 16;
+// With OracleTolerances::power_noise = sigma: the balance errs by about sum_L share_L^2 / (4 n_L)
+// in variance over the element links L (each fraction from n_L pairs errs by at most 1 / (2
+// sqrt(n_L)) of its unoccluded share), which for a given total of pairs is least with n_L = share_L
+// / (4 sigma^2) (Lagrange); the variance is then sigma^2 sum_L share_L, and the shares of a closed
+// scene's partly visible links sum to about 1 (0.6-1.2 in the generated warehouse and the cluttered
+// rooms of hard_test). The cluster links' sends err by about kClusterSendNoise at the defaults in
+// those rooms; each end casts (kClusterSendNoise / sigma)^2 times the rays (never fewer; at most
+// 25 times: SolveOptions accepts sigma >= kLeastPowerNoise).
+constexpr double kClusterSendNoise = 5e-4;
 // The sampling error of what each end of an element link gathers through it, in units of the
 // tolerance, that the linked fraction's point pairs aim for, and the fewest pairs (per 64 of
 // --visibility-samples; the kernel-weighted fraction is a ratio, biased by O(1 / pairs): with 4,
@@ -670,8 +679,10 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
     const double scale = static_cast<double>(pair_samples_) / kDefaultVisibilitySamples;
     const double share = (weight(c.p) + weight(c.q)) * exchange / total_area_;
     const double gathered = std::max(c.share_p, c.share_q);
-    const double wanted = scale * std::ceil(std::max(std::pow(share / (2.0 * kPowerNoise), 2),
-                                                     std::pow(gathered / (2.0 * kGatherNoise), 2)));
+    const double budget = tol_.power_noise > 0.0 ? share / (4.0 * tol_.power_noise * tol_.power_noise) : 0.0;
+    const double wanted = std::max(scale * std::ceil(std::max(std::pow(share / (2.0 * kPowerNoise), 2),
+                                                              std::pow(gathered / (2.0 * kGatherNoise), 2))),
+                                   std::ceil(budget));
     const int samples = static_cast<int>(std::clamp(wanted, std::max(kFewestLinkSamples, scale * kLeastLinkSamples),
                                                     static_cast<double>(kMostLinkSamples * pair_samples_)));
     const PairVisibility seen = evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, among, samples,
@@ -792,7 +803,10 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
           auto own = [&](NodeRef end, const NodeSurfaces& from, NodeRef other, const NodeSurfaces& to,
                          std::uint64_t stream, ShadedPatches* s, std::vector<int>* reached) {
             const int patches = geometry_.patch_count(end);
-            const int rays = std::max(kFacingRays, (evaluator_.visibility_samples() + patches - 1) / patches);
+            const double sends =
+                tol_.power_noise > 0.0 ? std::max(1.0, std::pow(kClusterSendNoise / tol_.power_noise, 2)) : 1.0;
+            const int rays =
+                std::max(kFacingRays, static_cast<int>(std::ceil(sends * evaluator_.visibility_samples() / patches)));
             ShadedPatches fresh = evaluator_.shaded_surfaces(from, to, rays, detail::mix_seed(seed, stream), reached);
             geometry_.drop_idle(end, other, &fresh);
             double exchange = 0.0;  // sum_j A_j q_j: what the end sends per unit radiosity

@@ -115,6 +115,11 @@ struct OracleTolerances {
   int source_levels = 0;
   /// Per patch, whether its elements may split below aeps as sources (empty: all may).
   std::vector<char> source_patches;
+  /// The standard deviation over sample streams the power balance should have (0: the default
+  /// sampling, whose spread is about 1e-3 in cluttered closed rooms). Element links then take point
+  /// pairs in proportion to their share of the power, and each cluster-link end casts more rays
+  /// (ErrorBoundOracle::decide_elements(), decide_with_cluster()).
+  double power_noise = 0.0;
 };
 
 /// Pairs of clusters (or a cluster and an element) farther apart than this many times the sum of

@@ -53,6 +53,9 @@ void validate_options(const SolveOptions& o) {
   if (o.source_levels < 0 || o.source_levels > kMaxSourceLevels)
     throw Error(fmt::format("--source-levels must be in [0, {}], got {}", kMaxSourceLevels, o.source_levels));
   check_positive("--tolerance", o.tolerance);
+  if (!(o.power_noise == 0.0 || (o.power_noise >= kLeastPowerNoise && o.power_noise <= 1.0)))
+    throw Error(fmt::format("--power-noise must be 0 (default sampling) or in [{}, 1], got {}", kLeastPowerNoise,
+                            o.power_noise));
   if (o.max_iterations < 1) throw Error(fmt::format("--max-iterations must be >= 1, got {}", o.max_iterations));
   switch (o.linear_solver) {
     case LinearSolver::kLu:

@@ -75,6 +75,10 @@ struct SourceLevels {
 /// Reads `--source-levels TEXT`; anything else is an Error naming the option.
 SourceLevels parse_source_levels(const std::string& text);
 
+/// The smallest SolveOptions::power_noise accepted: below it the rays it asks for pass what a solve
+/// can afford (25x the cluster links' rays at 1e-4).
+inline constexpr double kLeastPowerNoise = 1e-4;
+
 struct SolveOptions {
   Method method = Method::kHierarchical;
   /// Full matrix and substructuring: largest element area (scene units squared); 0 = automatic:
@@ -117,6 +121,9 @@ struct SolveOptions {
   /// other values give independent draws of the same estimators: the spread of a result over a few
   /// seeds is its sampling noise.
   std::uint64_t seed = 0;
+  /// Hierarchical: the standard deviation over sample streams that the power balance (absorbed over
+  /// emitted) should have, or 0 for the default sampling (OracleTolerances::power_noise).
+  double power_noise = 0.0;
   /// Gather the irradiance even where nothing reflects (every reflectance 0), so that
   /// Solution::face_irradiance holds H for radiant exchange (black surfaces still absorb).
   bool irradiance = false;
