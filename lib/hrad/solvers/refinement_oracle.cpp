@@ -368,7 +368,11 @@ ErrorBoundOracle::ErrorBoundOracle(const ElementHierarchy& hierarchy, const Clus
       // The pair's budget of point pairs (--visibility-samples, 64 by default) for the link's visible
       // fraction, whose noise a small face in a penumbra shows (RenderPark's cube: faces 8% off with a
       // quarter of it). The shape and the error test take kPointRays a point whatever the budget.
-      pair_samples_(std::max(4, evaluator.visibility_samples())) {
+      pair_samples_(std::max(4, evaluator.visibility_samples())),
+      cluster_end_rays_(evaluator.visibility_samples() *
+                        (tolerances.power_noise > 0.0
+                             ? std::max(1.0, std::pow(kClusterSendNoise / tolerances.power_noise, 2))
+                             : 1.0)) {
   for (const Patch& patch : evaluator.scene().patches) total_area_ += patch.area;
   b_mean_ = mean_radiosity(evaluator.scene());
   // Read only by varied(), with source levels.
@@ -803,10 +807,7 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
           auto own = [&](NodeRef end, const NodeSurfaces& from, NodeRef other, const NodeSurfaces& to,
                          std::uint64_t stream, ShadedPatches* s, std::vector<int>* reached) {
             const int patches = geometry_.patch_count(end);
-            const double sends =
-                tol_.power_noise > 0.0 ? std::max(1.0, std::pow(kClusterSendNoise / tol_.power_noise, 2)) : 1.0;
-            const int rays =
-                std::max(kFacingRays, static_cast<int>(std::ceil(sends * evaluator_.visibility_samples() / patches)));
+            const int rays = std::max(kFacingRays, static_cast<int>(std::ceil(cluster_end_rays_ / patches)));
             ShadedPatches fresh = evaluator_.shaded_surfaces(from, to, rays, detail::mix_seed(seed, stream), reached);
             geometry_.drop_idle(end, other, &fresh);
             double exchange = 0.0;  // sum_j A_j q_j: what the end sends per unit radiosity

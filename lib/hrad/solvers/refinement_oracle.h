@@ -213,6 +213,9 @@ class ErrorBoundOracle final : public RefinementOracle {
   int channels_;
   const std::vector<Rgb>* cluster_radiosity_;
   int pair_samples_;
+  /// Rays each cluster-link end casts for its sends, shared among its patches: --visibility-samples,
+  /// times (kClusterSendNoise / power_noise)^2 with OracleTolerances::power_noise.
+  double cluster_end_rays_;
   double total_area_ = 0.0;   ///< the scene's: a link's weighted exchange over it is its share of the power
   Rgb b_mean_ = Rgb::Zero();  ///< mean_radiosity() of the scene
   /// Per element (as numbered when last observed): its weight then; empty before any observe().
