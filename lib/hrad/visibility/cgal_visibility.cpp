@@ -309,6 +309,8 @@ class CgalVisibility final : public Visibility {
   VisibilityEstimate estimate_from_point(const Vec3& x, int patch_x, std::span<const Vec3> b, int patch_b, int samples,
                                          std::uint64_t seed) const override;
 
+  RayHit first_hit(const Vec3& x, int patch, const Vec3& direction) const override;
+
   bool scene_has_occlusion() const override {
     std::call_once(occlusion_once_, [this] { occlusion_ = decide_occlusion(); });
     return occlusion_;
@@ -442,12 +444,14 @@ class CgalVisibility final : public Visibility {
   std::vector<detail::Triangle3> bvh_triangle_coords_;
   std::vector<int> bvh_plane_;
   std::vector<int> bvh_patch_;
+  std::vector<Vec3> patch_normal_;  ///< each patch's unit front normal (first_hit())
   mutable std::once_flag occlusion_once_;
   mutable bool occlusion_ = true;
 };
 
 CgalVisibility::CgalVisibility(const Scene& scene, const VisibilityOptions& options) : options_(options) {
   patch_triangles_.reserve(scene.patches.size());
+  for (const Patch& patch : scene.patches) patch_normal_.push_back(patch.normal);
   for (std::size_t p = 0; p < scene.patches.size(); ++p) {
     const auto& v = scene.patches[p].vertices;
     const int begin = static_cast<int>(triangles_.size());
@@ -739,6 +743,45 @@ bool CgalVisibility::any_triangle_meets(const Point& a, int patch_a, const Point
   BlockingTraversal traversal(triangles_, triangle_patch_, triangle_boxes_, cull, patch_a, patch_b, meets_index);
   tree_.traversal(Segment(a, b), traversal);
   return traversal.blocked();
+}
+
+RayHit CgalVisibility::first_hit(const Vec3& x, int patch, const Vec3& direction) const {
+  counters().segment_queries.add();
+  // A segment long enough to leave the scene's bounding cube [-m, m]^3 from any point in it.
+  const double m =
+      std::max({magnitude_, std::abs(x.x()), std::abs(x.y()), std::abs(x.z()), std::numeric_limits<double>::min()});
+  const Vec3 d = direction * (4.0 * m);
+  const Vec3 end = x + d;
+  const detail::SegmentCull cull({x.x(), x.y(), x.z()}, {end.x(), end.y(), end.z()}, magnitude_);
+  constexpr double kEdge = 1e-12, kNear = 1e-12;
+  double nearest = INFINITY;
+  RayHit hit;
+  bvh_.any_hit(cull, [&](std::uint32_t i) {
+    if (bvh_patch_[i] == patch) return false;
+    // Moller & Trumbore 1997, "Fast, minimum storage ray-triangle intersection"; t in units of d.
+    const detail::Triangle3& t = bvh_triangle_coords_[i];
+    const Vec3 e1 = t[1] - t[0], e2 = t[2] - t[0];
+    const Vec3 p = d.cross(e2);
+    const double det = e1.dot(p);
+    if (det == 0.0) return false;  // the ray runs in the triangle's plane
+    const double inv = 1.0 / det;
+    const Vec3 s0 = x - t[0];
+    const double u = s0.dot(p) * inv;
+    if (u < -kEdge || u > 1.0 + kEdge) return false;
+    const Vec3 q = s0.cross(e1);
+    const double v = d.dot(q) * inv;
+    if (v < -kEdge || u + v > 1.0 + kEdge) return false;
+    const double along = e2.dot(q) * inv;
+    if (!(along > kNear) || along > nearest + kNear) return false;
+    // Of patches met at one distance (a zero-thickness wall's two sides) the front counts.
+    const bool front = direction.dot(patch_normal_[static_cast<std::size_t>(bvh_patch_[i])]) < 0.0;
+    if (along < nearest - kNear || (front && !hit.front)) {
+      nearest = std::min(nearest, along);
+      hit = {bvh_patch_[i], front};
+    }
+    return false;
+  });
+  return hit;
 }
 
 bool CgalVisibility::blocked_between(const Point& a, int patch_a, const Point& b, int patch_b,

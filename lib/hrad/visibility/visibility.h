@@ -26,6 +26,12 @@ enum class Sight {
   kVisible,     ///< facing, and nothing between them
 };
 
+/// What a ray first meets (Visibility::first_hit()).
+struct RayHit {
+  int patch = -1;      ///< -1: nothing (the ray leaves the scene)
+  bool front = false;  ///< it meets `patch` from the side its normal faces
+};
+
 /// Fraction of the pair that is mutually visible, with an error estimate.
 struct VisibilityEstimate {
   double fraction = 1.0;  ///< in [0, 1]
@@ -112,6 +118,15 @@ class Visibility {
   /// exactly first. The default samples with segment_blocked().
   virtual VisibilityEstimate estimate_from_point(const Vec3& x, int patch_x, std::span<const Vec3> b, int patch_b,
                                                  int samples, std::uint64_t seed) const;
+
+  /// The first patch other than `patch` that the ray from `x` along `direction` (unit, not
+  /// parallel to nothing in particular) meets, and from which side; nothing (-1) when it leaves
+  /// the scene. Decided in double precision (Moller & Trumbore 1997) with triangles' edges taken
+  /// as closed, for statistics over many rays (closed_scene.h), not for the exact sight of a pair.
+  /// Meetings within 1e-12 of the scene's extent of `x` are ignored (a zero-thickness wall's
+  /// back-to-back twin of `patch`); of patches met at one distance (a zero-thickness wall seen
+  /// from either side) the one met from its front counts. Counted as a segment query.
+  virtual RayHit first_hit(const Vec3& x, int patch, const Vec3& direction) const = 0;
 
   VisibilityCounters& counters() const { return counters_; }
 
