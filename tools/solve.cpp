@@ -38,6 +38,9 @@
 //                          the same estimators, so a result's spread over seeds is its sampling noise
 //   --power-noise S        hierarchical: the standard deviation over sample streams the power
 //                          balance should have (default 0: the default sampling)
+//   --closure auto|off     hierarchical, HSA push: auto (default) closes every leaf's sends to 1
+//                          where rays drawn by the solve's power find no opening and no back
+//                          (lib/hrad/solvers/closed_scene.h); off leaves the links' sampled closure
 //   --clustering auto|on|off
 //                          hierarchical: a cluster hierarchy above the input polygons, linked from
 //                          one root self-link (Smits, Arvo & Greenberg 1994), or plain HSA with every
@@ -114,7 +117,7 @@ void add_solve_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("solve", "Solve the radiosity of a scene (full, substructure or hierarchical)");
   struct Args {
     std::string scene, method = "hierarchical", linear_solver = "lu", effects = "auto", kernel = "contour",
-                       clustering = "auto", push = "hsa", basis = "constant", report, out;
+                       clustering = "auto", closure = "auto", push = "hsa", basis = "constant", report, out;
     double max_area = 0.0, patch_area = 0.0, feps = 0.0, bfeps = 0.0, aeps = 0.0, tolerance = 1e-6, exposure = 0.0,
            power_noise = 0.0;
     int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0;
@@ -155,6 +158,9 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--power-noise", args->power_noise,
                   "Hierarchical: the standard deviation over --seed streams the power balance should have, e.g. 2.5e-4 "
                   "(more point pairs and cluster rays where the power flows; default 0: the default sampling)");
+  cmd->add_option("--closure", args->closure,
+                  "Hierarchical, HSA push: auto (default: where rays drawn by the solve's power find no opening and "
+                  "no back, every leaf's sends are closed to 1 and the power balances by construction) | off");
   cmd->add_option("--clustering", args->clustering,
                   "Hierarchical: auto | on | off (default auto: on from 200 patches)");
   cmd->add_option("--push", args->push,
@@ -206,6 +212,9 @@ void add_solve_command(CLI::App& app) {
     o.visibility_samples = args->visibility_samples;
     o.seed = args->seed;
     o.power_noise = args->power_noise;
+    if (args->closure != "auto" && args->closure != "off")
+      throw Error(fmt::format("--closure must be auto or off, got '{}'", args->closure));
+    o.close_closed_scenes = args->closure == "auto";
     o.threads = args->threads;
     if (!args->quiet) o.progress = [](std::string_view line) { std::cerr << "hrad solve: " << line << "\n"; };
     validate_options(o);

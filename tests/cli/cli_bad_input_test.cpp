@@ -57,6 +57,7 @@ const BadInput kCases[] = {
     {"solve_negative_bfeps", {}, "solve " + kScene + " --bfeps -0.1 --out {d}/s.ply", "--bfeps"},
     {"solve_zero_tolerance", {}, "solve " + kScene + " --tolerance 0 --out {d}/s.ply", "--tolerance"},
     {"solve_power_noise_below_least", {}, "solve " + kScene + " --power-noise 1e-6 --out {d}/s.ply", "--power-noise"},
+    {"solve_closure_unknown", {}, "solve " + kScene + " --closure always --out {d}/s.ply", "--closure"},
     {"solve_negative_max_area", {}, "solve " + kScene + " --method full --max-area -2 --out {d}/s.ply", "--max-area"},
     // A full matrix larger than the machine's memory: refused before meshing, not std::bad_alloc.
     {"solve_full_matrix_too_large",

@@ -34,6 +34,7 @@ nlohmann::json solve_report_json(const Scene& scene, const SolveOptions& options
                   {"visibility_samples", used.visibility_samples},
                   {"seed", used.seed},
                   {"power_noise", used.power_noise},
+                  {"closure", used.close_closed_scenes ? "auto" : "off"},
                   {"clustering", std::string(to_string(used.clustering))},
                   {"push", std::string(to_string(used.push))},
                   {"basis", std::string(to_string(used.basis))},

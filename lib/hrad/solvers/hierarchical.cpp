@@ -9,6 +9,7 @@
 
 #include "hrad/core/bright_emitters.h"
 #include "hrad/geometry/polygon.h"
+#include "hrad/solvers/closed_scene.h"
 #include "hrad/solvers/cluster_transfer.h"
 #include "hrad/solvers/cluster_tree.h"
 #include "hrad/solvers/hsa_links.h"
@@ -20,6 +21,7 @@
 #include "hrad/solvers/send_closure.h"
 #include "hrad/solvers/solved_hierarchy.h"
 #include "hrad/solvers/solver_context.h"
+#include "hrad/visibility/sampling.h"
 
 namespace hrad {
 namespace {
@@ -145,6 +147,11 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   std::vector<PointValues> point_radiosity;  // the leaves' radiosity at their points (for display)
   std::uint64_t candidates = 0;
   int passes = 0;
+  // Whether the solve's light stays in the scene (closed_scene.h): tested once, after the first
+  // converged solve, by rays drawn by its power; then every leaf's sends are closed to 1.
+  const bool may_close = options.close_closed_scenes && options.push == Push::kHsa;
+  bool tested = false, closed_scene = false;
+  std::unique_ptr<Visibility> own_visibility;  // where the solve needs none (nothing can block)
   while (true) {
     RefineResult refined;
     {
@@ -180,9 +187,9 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     // leaves under cluster links send what their links' closure says (send_closure.h).
     const bool linear = options.basis == Basis::kLinear;
     const bool under_clusters = tree != nullptr && options.push == Push::kHsa && !linear;
-    if ((options.source_levels > 0 || linear || under_clusters) && ops.hsa) {
+    if ((options.source_levels > 0 || linear || under_clusters || closed_scene) && ops.hsa) {
       auto phase = ctx.phase("closure");
-      push_pull.set_send_closure(send_closures(h, *ops.hsa, push_pull, t.aeps, linear, under_clusters));
+      push_pull.set_send_closure(send_closures(h, *ops.hsa, push_pull, t.aeps, linear, under_clusters, closed_scene));
     }
     NodeField field = push_pull.make_field();
     const std::vector<const LinkOperator*> all = ops.all();
@@ -190,6 +197,42 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     {
       auto phase = ctx.phase("solve");
       converged = iterate(ctx, push_pull, all, field, bound);
+    }
+    if (may_close && !tested && converged && ops.hsa) {
+      tested = true;
+      LightLoss loss;
+      {
+        auto phase = ctx.phase("closure test");
+        const Visibility* visibility = ctx.visibility();
+        if (visibility == nullptr) {
+          own_visibility = make_visibility(scene);
+          visibility = own_visibility.get();
+        }
+        double leaving = 0.0, emitted = 0.0;
+        for (const NodeId leaf : h.all_leaves())
+          leaving += h.node(leaf).area * field.radiosity[static_cast<std::size_t>(leaf)].sum();
+        for (const Patch& p : scene.patches)
+          emitted += p.area * scene.materials[static_cast<std::size_t>(p.material)].emission.sum();
+        loss = light_loss(scene, h, field.radiosity, *visibility, closure_test_plan(leaving, emitted),
+                          detail::mix_seed(options.seed, 0x636c6f73));
+      }
+      closed_scene = loss.closed();
+      figures["closure_test_rays"] = static_cast<double>(loss.rays);
+      figures["closure_test_lost_rays"] = static_cast<double>(loss.lost);
+      figures["closed_scene"] = closed_scene ? 1.0 : 0.0;
+      if (closed_scene) {
+        ctx.progress(
+            fmt::format("hierarchical: {} of {} rays drawn by the power lost (at most {} allowed): the "
+                        "scene keeps its light, every leaf's sends closed to 1",
+                        loss.lost, loss.rays, loss.allowed_lost));
+        {
+          auto phase = ctx.phase("closure");
+          push_pull.set_send_closure(send_closures(h, *ops.hsa, push_pull, t.aeps, linear, under_clusters, true));
+          push_pull.pull(field);  // the moments the next gather reads, closed
+        }
+        auto phase = ctx.phase("solve");
+        converged = iterate(ctx, push_pull, all, field, bound);
+      }
     }
     push_pull.store(field, h, &cluster_radiosity);
     if (options.push == Push::kHsa || options.basis == Basis::kLinear)
@@ -264,6 +307,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     for (PointValues& v : point_radiosity)
       for (Rgb& b : v) copy_gray(b);
   SolveSummary summary = ctx.finish(h, directed_link_count(links), out, point_radiosity);
+  if (own_visibility) summary.work.segment_queries += own_visibility->counters().segment_queries.load();
   if (out != nullptr) out->link_segments = std::move(segments);
   if (kept != nullptr) *kept = {std::make_unique<ElementHierarchy>(std::move(h)), std::move(tree), std::move(links)};
   return summary;

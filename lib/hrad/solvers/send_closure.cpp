@@ -7,7 +7,7 @@
 namespace hrad {
 
 std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks& links, const PushPull& push_pull,
-                                       double aeps, bool linear, bool under_clusters) {
+                                       double aeps, bool linear, bool under_clusters, bool closed_scene) {
   const std::size_t n = h.size();
   // The element that cannot split above each node (kNoNode where none is above or the node's own
   // area still allows a split): children have larger ids than their parent.
@@ -28,7 +28,7 @@ std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks
   bool split_patches = false;
   if (under_clusters)
     for (int p = 0; p < h.patch_count() && !split_patches; ++p) split_patches = !h.node(h.root(p)).is_leaf();
-  if (!below && !linear && !split_patches) return {};
+  if (!below && !linear && !split_patches && !closed_scene) return {};
 
   std::vector<std::array<double, 9>> d = links.send_coefficients([&](NodeId r, const std::array<float, 9>& factor) {
     const std::array<double, 9>& w = push_pull.mean_weights(r);
@@ -89,8 +89,12 @@ std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks
     if (!leaf.is_leaf()) continue;
     const std::size_t b = static_cast<std::size_t>(block[i]);
     const std::size_t patch = static_cast<std::size_t>(leaf.patch);
-    if (split_patches && block[i] == kNoNode && leaf.parent != kNoNode && clustered[i] > 0.0 &&
-        sigma[i] + clustered[i] >= kClosedBlock) {
+    if (closed_scene && sigma[i] > 0.0 && 1.0 - clustered[i] > 0.0 &&
+        std::abs((1.0 - clustered[i]) / sigma[i] - 1.0) <= kLargestClosureMove) {
+      // The scene keeps its light: every leaf's closure is 1 (closed_scene.h).
+      closure[i] = {d[i], sigma[i], 1.0 - clustered[i]};
+    } else if (split_patches && block[i] == kNoNode && leaf.parent != kNoNode && clustered[i] > 0.0 &&
+               sigma[i] + clustered[i] >= kClosedBlock) {
       // Each leaf sends, through the element links, what brings its whole closure to the mean of
       // its patch's closed leaves (send_closure.h).
       const double target = patch_whole[patch] / patch_area[patch] - clustered[i];

@@ -66,8 +66,8 @@ namespace hrad {
 /// generated city's, open at the sides: 0.4 to 0.7; closed to their means, its parts at the
 /// buildings' feet sent too little and the error per polygon went up from 2.2% to 2.9%).
 inline constexpr double kClosedBlock = 0.9;
-/// A leaf under cluster links is closed only where that moves what it sends through the element
-/// links by at most this share.
+/// A leaf under cluster links, or any leaf of a scene that keeps its light, is closed only where
+/// that moves what it sends through the element links by at most this share.
 inline constexpr double kLargestClosureMove = 0.25;
 
 /// Per element (node id), what PushPull::set_send_closure() takes: on the leaves below the
@@ -75,9 +75,12 @@ inline constexpr double kLargestClosureMove = 0.25;
 /// `linear`, on the other leaves whose links close them, sigma_L as what they should send; with
 /// `under_clusters` (constant leaves), on the other leaves of a split patch that cluster links
 /// reach and whose links close them, what brings their whole closure to their patch's mean; `closed`
-/// 0 elsewhere. Empty when there is nothing to close.
+/// 0 elsewhere. With `closed_scene` (the scene keeps its light, closed_scene.h), every leaf that
+/// sends through element links instead sends through them what brings its whole closure to 1,
+/// wherever that moves them by at most kLargestClosureMove (the rules above elsewhere). Empty when
+/// there is nothing to close.
 std::vector<SendClosure> send_closures(const ElementHierarchy& hierarchy, const HsaLinks& links,
-                                       const PushPull& push_pull, double aeps, bool linear,
-                                       bool under_clusters = false);
+                                       const PushPull& push_pull, double aeps, bool linear, bool under_clusters = false,
+                                       bool closed_scene = false);
 
 }  // namespace hrad

@@ -124,6 +124,10 @@ struct SolveOptions {
   /// Hierarchical: the standard deviation over sample streams that the power balance (absorbed over
   /// emitted) should have, or 0 for the default sampling (OracleTolerances::power_noise).
   double power_noise = 0.0;
+  /// Hierarchical with the HSA push: when the solve's light is found to stay in the scene
+  /// (closed_scene.h), every leaf's sends are closed to 1, so that the power balances by
+  /// construction; off: the links' sampled closure stands (--closure off).
+  bool close_closed_scenes = true;
   /// Gather the irradiance even where nothing reflects (every reflectance 0), so that
   /// Solution::face_irradiance holds H for radiant exchange (black surfaces still absorb).
   bool irradiance = false;
