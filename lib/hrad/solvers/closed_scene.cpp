@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -71,6 +72,21 @@ LightLoss light_loss(const Scene& scene, const ElementHierarchy& h, std::span<co
     out.lost += lost.load();
   }
   return out;
+}
+
+LightLoss test_light_loss(const Scene& scene, const ElementHierarchy& h, std::span<const Rgb> radiosity,
+                          const Visibility* visibility, std::uint64_t seed) {
+  double leaving = 0.0, emitted = 0.0;
+  for (const NodeId leaf : h.all_leaves())
+    leaving += h.node(leaf).area * radiosity[static_cast<std::size_t>(leaf)].sum();
+  for (const Patch& p : scene.patches)
+    emitted += p.area * scene.materials[static_cast<std::size_t>(p.material)].emission.sum();
+  const ClosureTestPlan plan = closure_test_plan(leaving, emitted);
+  if (visibility != nullptr) return light_loss(scene, h, radiosity, *visibility, plan, seed);
+  const std::unique_ptr<Visibility> own = make_visibility(scene);
+  LightLoss loss = light_loss(scene, h, radiosity, *own, plan, seed);
+  loss.own_visibility = true;
+  return loss;
 }
 
 }  // namespace hrad

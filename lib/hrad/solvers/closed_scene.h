@@ -57,6 +57,7 @@ struct LightLoss {
   std::uint64_t rays = 0;          ///< rays cast (each one Visibility::first_hit())
   std::uint64_t lost = 0;          ///< of them: leaving the scene or meeting a patch's back
   std::uint64_t allowed_lost = 0;  ///< the plan's
+  bool own_visibility = false;     ///< cast with an oracle of its own (test_light_loss())
   bool closed() const { return rays > 0 && lost <= allowed_lost; }
 };
 
@@ -65,5 +66,11 @@ struct LightLoss {
 /// the batch in which more than `plan.allowed_lost` are lost.
 LightLoss light_loss(const Scene& scene, const ElementHierarchy& h, std::span<const Rgb> radiosity,
                      const Visibility& visibility, const ClosureTestPlan& plan, std::uint64_t seed);
+
+/// light_loss() of a solution (`radiosity` by node id) by the plan for its leaves' power and the
+/// scene's emission, cast with `visibility`, or where that is null (a solve that needs no
+/// visibility: nothing can block) with an oracle made for it.
+LightLoss test_light_loss(const Scene& scene, const ElementHierarchy& h, std::span<const Rgb> radiosity,
+                          const Visibility* visibility, std::uint64_t seed);
 
 }  // namespace hrad

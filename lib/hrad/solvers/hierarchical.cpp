@@ -151,7 +151,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   // converged solve, by rays drawn by its power; then every leaf's sends are closed to 1.
   const bool may_close = options.close_closed_scenes && options.push == Push::kHsa;
   bool tested = false, closed_scene = false;
-  std::unique_ptr<Visibility> own_visibility;  // where the solve needs none (nothing can block)
+  std::uint64_t own_rays = 0;  // the test's rays where the solve has no visibility oracle to count them
   while (true) {
     RefineResult refined;
     {
@@ -203,20 +203,10 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
       LightLoss loss;
       {
         auto phase = ctx.phase("closure test");
-        const Visibility* visibility = ctx.visibility();
-        if (visibility == nullptr) {
-          own_visibility = make_visibility(scene);
-          visibility = own_visibility.get();
-        }
-        double leaving = 0.0, emitted = 0.0;
-        for (const NodeId leaf : h.all_leaves())
-          leaving += h.node(leaf).area * field.radiosity[static_cast<std::size_t>(leaf)].sum();
-        for (const Patch& p : scene.patches)
-          emitted += p.area * scene.materials[static_cast<std::size_t>(p.material)].emission.sum();
-        loss = light_loss(scene, h, field.radiosity, *visibility, closure_test_plan(leaving, emitted),
-                          detail::mix_seed(options.seed, 0x636c6f73));
+        loss = test_light_loss(scene, h, field.radiosity, ctx.visibility(), detail::mix_seed(options.seed, 0x636c6f73));
       }
       closed_scene = loss.closed();
+      if (loss.own_visibility) own_rays = loss.rays;
       figures["closure_test_rays"] = static_cast<double>(loss.rays);
       figures["closure_test_lost_rays"] = static_cast<double>(loss.lost);
       figures["closed_scene"] = closed_scene ? 1.0 : 0.0;
@@ -307,7 +297,7 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     for (PointValues& v : point_radiosity)
       for (Rgb& b : v) copy_gray(b);
   SolveSummary summary = ctx.finish(h, directed_link_count(links), out, point_radiosity);
-  if (own_visibility) summary.work.segment_queries += own_visibility->counters().segment_queries.load();
+  summary.work.segment_queries += own_rays;
   if (out != nullptr) out->link_segments = std::move(segments);
   if (kept != nullptr) *kept = {std::make_unique<ElementHierarchy>(std::move(h)), std::move(tree), std::move(links)};
   return summary;
