@@ -171,9 +171,12 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
       balanced = h.balance();
       figures["balance_splits"] += static_cast<double>(balanced);
     }
-    refined.links.insert(refined.links.begin(), standing.begin(), standing.end());
-    const bool changed = refined.splits > 0 || balanced > 0 || refined.links.size() != links.size();
-    links = std::move(refined.links);
+    // The standing links first, then the new ones (the order the gather sums them in).
+    standing.insert(standing.end(), std::make_move_iterator(refined.links.begin()),
+                    std::make_move_iterator(refined.links.end()));
+    const bool changed = refined.splits > 0 || balanced > 0 || standing.size() != links.size();
+    links = std::move(standing);
+    standing = {};
     {
       auto phase = ctx.phase("links");
       ops = make_operators(options, h, tree.get(), geometry, ctx.evaluator(), links);
@@ -238,12 +241,12 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     // feps: the links at elements the solve found far brighter than their a-priori weight are
     // decided again with their brightness (ErrorBoundOracle::observe()); the others stand.
     const std::vector<char> raised = oracle.observe();
+    // Nothing raised: the links stand as they are (copying a million of them to find that took 4%
+    // of a two-thread solve of the 3,726-polygon warehouse, serially).
+    if (std::none_of(raised.begin(), raised.end(), [](char r) { return r != 0; })) break;
     auto is_raised = [&](NodeRef r) { return !is_cluster(r) && raised[static_cast<std::size_t>(r)] != 0; };
     for (const Link& l : links)
-      if (is_raised(l.p) || is_raised(l.q))
-        work.push_back({.p = l.p, .q = l.q});
-      else
-        standing.push_back(l);
+      if (is_raised(l.p) || is_raised(l.q)) work.push_back({.p = l.p, .q = l.q});
     const std::size_t relinked = work.size();
     // So are the pairs left unlinked because none of their few samples (counted by the a-priori
     // weights) saw through: a wall behind a lamp 1 mm from it is as bright as the lamp and sends
@@ -255,6 +258,10 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
       return true;
     });
     if (work.empty()) break;
+    // The links are replaced by the next pass's before they are read again.
+    standing.reserve(links.size() - relinked);
+    for (Link& l : links)
+      if (!is_raised(l.p) && !is_raised(l.q)) standing.push_back(std::move(l));
     ctx.progress(
         fmt::format("hierarchical: {} links and {} unseen pairs at elements brighter than their weight decided again",
                     relinked, work.size() - relinked));
