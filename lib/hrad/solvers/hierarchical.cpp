@@ -141,7 +141,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
 
   const double bound = radiosity_bound(scene);
   std::vector<Link> links;
-  std::vector<Link> standing;      // links a re-refinement leaves as they are
+  std::vector<Link> standing;  // links a re-refinement leaves as they are
+  std::size_t last_link_count = 0;
   std::vector<UnseenPair> unseen;  // pairs no sampled ray saw through, so far
   Operators ops;
   std::vector<PointValues> point_radiosity;  // the leaves' radiosity at their points (for display)
@@ -171,12 +172,18 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
       balanced = h.balance();
       figures["balance_splits"] += static_cast<double>(balanced);
     }
-    // The standing links first, then the new ones (the order the gather sums them in).
-    standing.insert(standing.end(), std::make_move_iterator(refined.links.begin()),
-                    std::make_move_iterator(refined.links.end()));
-    const bool changed = refined.splits > 0 || balanced > 0 || standing.size() != links.size();
+    // The standing links first, then the new ones (the order the gather sums them in), moved: a
+    // copy of millions of links is seconds of one thread.
+    if (standing.empty()) {
+      standing = std::move(refined.links);
+    } else {
+      standing.insert(standing.end(), std::make_move_iterator(refined.links.begin()),
+                      std::make_move_iterator(refined.links.end()));
+    }
+    const bool changed = refined.splits > 0 || balanced > 0 || standing.size() != last_link_count;
     links = std::move(standing);
     standing = {};
+    last_link_count = links.size();
     {
       auto phase = ctx.phase("links");
       ops = make_operators(options, h, tree.get(), geometry, ctx.evaluator(), links);
@@ -258,10 +265,10 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
       return true;
     });
     if (work.empty()) break;
-    // The links are replaced by the next pass's before they are read again.
-    standing.reserve(links.size() - relinked);
-    for (Link& l : links)
-      if (!is_raised(l.p) && !is_raised(l.q)) standing.push_back(std::move(l));
+    // The others stand, compacted in place (the next pass's links replace these before they are
+    // read again).
+    std::erase_if(links, [&](const Link& l) { return is_raised(l.p) || is_raised(l.q); });
+    standing = std::move(links);
     ctx.progress(
         fmt::format("hierarchical: {} links and {} unseen pairs at elements brighter than their weight decided again",
                     relinked, work.size() - relinked));
