@@ -70,9 +70,9 @@ double figure(const SolveSummary& s, const char* name) {
 }
 
 // Guarantee: in a closed room whose links sample their visibility (blocks between the lamp and the
-// floor), every sample stream's solve finds the room closed and absorbs what it emits to 1e-5 (the
-// iteration stops at 1e-6 of the reflected power); with --closure off the same streams err by the
-// links' sampling noise, more than 1e-4 in one of them at least (the control).
+// floor), every sample stream's solve finds the room closed, closes every leaf, and absorbs what it
+// emits to 1e-5 (the iteration stops at 1e-6 of the reflected power); with --closure off the same
+// streams err by the links' sampling noise, more than 1e-4 in one of them at least (the control).
 TEST(ClosedScene, AClosedRoomsPowerBalancesByConstructionInEverySampleStream) {
   const Scene s = room(Room::kClosed);
   double largest_off = 0.0;
@@ -80,6 +80,7 @@ TEST(ClosedScene, AClosedRoomsPowerBalancesByConstructionInEverySampleStream) {
     SCOPED_TRACE(::testing::Message() << "--seed " << seed);
     const Solved closed = solve_room(s, seed, true);
     EXPECT_EQ(figure(closed.summary, "closed_scene"), 1.0);
+    EXPECT_EQ(figure(closed.summary, "closure_unclosed_leaves"), 0.0);  // every leaf closed
     EXPECT_LT(std::abs(closed.residual), 1e-5);
     const Solved off = solve_room(s, seed, false);
     EXPECT_EQ(figure(off.summary, "closed_scene"), -1.0);  // not tested

@@ -199,7 +199,11 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     const bool under_clusters = tree != nullptr && options.push == Push::kHsa && !linear;
     if ((options.source_levels > 0 || linear || under_clusters || closed_scene) && ops.hsa) {
       auto phase = ctx.phase("closure");
-      push_pull.set_send_closure(send_closures(h, *ops.hsa, push_pull, t.aeps, linear, under_clusters, closed_scene));
+      std::size_t unclosed = 0;
+      push_pull.set_send_closure(
+          send_closures(h, *ops.hsa, push_pull, t.aeps, linear, under_clusters, closed_scene, &unclosed));
+      // The leaves of a closed scene whose sends the closure could not bring to 1 (send_closure.h).
+      if (closed_scene) figures["closure_unclosed_leaves"] = static_cast<double>(unclosed);
     }
     NodeField field = push_pull.make_field();
     const std::vector<const LinkOperator*> all = ops.all();
@@ -227,7 +231,10 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
                         loss.lost, loss.rays, loss.allowed_lost));
         {
           auto phase = ctx.phase("closure");
-          push_pull.set_send_closure(send_closures(h, *ops.hsa, push_pull, t.aeps, linear, under_clusters, true));
+          std::size_t unclosed = 0;
+          push_pull.set_send_closure(
+              send_closures(h, *ops.hsa, push_pull, t.aeps, linear, under_clusters, true, &unclosed));
+          figures["closure_unclosed_leaves"] = static_cast<double>(unclosed);
           push_pull.pull(field);  // the moments the next gather reads, closed
         }
         auto phase = ctx.phase("solve");

@@ -7,7 +7,8 @@
 namespace hrad {
 
 std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks& links, const PushPull& push_pull,
-                                       double aeps, bool linear, bool under_clusters, bool closed_scene) {
+                                       double aeps, bool linear, bool under_clusters, bool closed_scene,
+                                       std::size_t* unclosed) {
   const std::size_t n = h.size();
   // The element that cannot split above each node (kNoNode where none is above or the node's own
   // area still allows a split): children have larger ids than their parent.
@@ -93,8 +94,11 @@ std::vector<SendClosure> send_closures(const ElementHierarchy& h, const HsaLinks
         std::abs((1.0 - clustered[i]) / sigma[i] - 1.0) <= kLargestClosureMove) {
       // The scene keeps its light: every leaf's closure is 1 (closed_scene.h).
       closure[i] = {d[i], sigma[i], 1.0 - clustered[i]};
-    } else if (split_patches && block[i] == kNoNode && leaf.parent != kNoNode && clustered[i] > 0.0 &&
-               sigma[i] + clustered[i] >= kClosedBlock) {
+      continue;
+    }
+    if (closed_scene && unclosed != nullptr) ++*unclosed;
+    if (split_patches && block[i] == kNoNode && leaf.parent != kNoNode && clustered[i] > 0.0 &&
+        sigma[i] + clustered[i] >= kClosedBlock) {
       // Each leaf sends, through the element links, what brings its whole closure to the mean of
       // its patch's closed leaves (send_closure.h).
       const double target = patch_whole[patch] / patch_area[patch] - clustered[i];

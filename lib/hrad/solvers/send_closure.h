@@ -77,10 +77,11 @@ inline constexpr double kLargestClosureMove = 0.25;
 /// reach and whose links close them, what brings their whole closure to their patch's mean; `closed`
 /// 0 elsewhere. With `closed_scene` (the scene keeps its light, closed_scene.h), every leaf that
 /// sends through element links instead sends through them what brings its whole closure to 1,
-/// wherever that moves them by at most kLargestClosureMove (the rules above elsewhere). Empty when
-/// there is nothing to close.
+/// wherever that moves them by at most kLargestClosureMove (the rules above elsewhere), and
+/// `*unclosed` (when not null) counts the leaves it could not close so. Empty when there is nothing
+/// to close.
 std::vector<SendClosure> send_closures(const ElementHierarchy& hierarchy, const HsaLinks& links,
                                        const PushPull& push_pull, double aeps, bool linear, bool under_clusters = false,
-                                       bool closed_scene = false);
+                                       bool closed_scene = false, std::size_t* unclosed = nullptr);
 
 }  // namespace hrad
