@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "hrad/core/rng.h"
+#include "hrad/geometry/polygon.h"
 #include "hrad/visibility/sampling.h"
 
 namespace hrad {
@@ -58,8 +59,7 @@ LightLoss light_loss(const Scene& scene, const ElementHierarchy& h, std::span<co
                           const Vec3 x = detail::polygon_point(leaf.polygon(), u, v);
                           // A cosine-distributed direction about the patch's normal (Malley's method).
                           const Vec3& n = scene.patches[static_cast<std::size_t>(leaf.patch)].normal;
-                          const Vec3 t = (std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
-                          const Vec3 s = n.cross(t);
+                          const auto [t, s] = plane_basis(n);
                           const double r2 = rng.uniform(), phi = 2.0 * std::numbers::pi * rng.uniform();
                           const double r = std::sqrt(r2);
                           const Vec3 d =
@@ -79,8 +79,7 @@ LightLoss test_light_loss(const Scene& scene, const ElementHierarchy& h, std::sp
   double leaving = 0.0, emitted = 0.0;
   for (const NodeId leaf : h.all_leaves())
     leaving += h.node(leaf).area * radiosity[static_cast<std::size_t>(leaf)].sum();
-  for (const Patch& p : scene.patches)
-    emitted += p.area * scene.materials[static_cast<std::size_t>(p.material)].emission.sum();
+  for (const Patch& p : scene.patches) emitted += p.area * scene.material_of(p).emission.sum();
   const ClosureTestPlan plan = closure_test_plan(leaving, emitted);
   if (visibility != nullptr) return light_loss(scene, h, radiosity, *visibility, plan, seed);
   const std::unique_ptr<Visibility> own = make_visibility(scene);

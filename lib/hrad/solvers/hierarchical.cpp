@@ -197,14 +197,15 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
     // leaves under cluster links send what their links' closure says (send_closure.h).
     const bool linear = options.basis == Basis::kLinear;
     const bool under_clusters = tree != nullptr && options.push == Push::kHsa && !linear;
-    if ((options.source_levels > 0 || linear || under_clusters || closed_scene) && ops.hsa) {
+    auto close_sends = [&] {
       auto phase = ctx.phase("closure");
       std::size_t unclosed = 0;
       push_pull.set_send_closure(
           send_closures(h, *ops.hsa, push_pull, t.aeps, linear, under_clusters, closed_scene, &unclosed));
       // The leaves of a closed scene whose sends the closure could not bring to 1 (send_closure.h).
       if (closed_scene) figures["closure_unclosed_leaves"] = static_cast<double>(unclosed);
-    }
+    };
+    if ((options.source_levels > 0 || linear || under_clusters || closed_scene) && ops.hsa) close_sends();
     NodeField field = push_pull.make_field();
     const std::vector<const LinkOperator*> all = ops.all();
     bool converged = false;
@@ -229,14 +230,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
             fmt::format("hierarchical: {} of {} rays drawn by the power lost (at most {} allowed): the "
                         "scene keeps its light, every leaf's sends closed to 1",
                         loss.lost, loss.rays, loss.allowed_lost));
-        {
-          auto phase = ctx.phase("closure");
-          std::size_t unclosed = 0;
-          push_pull.set_send_closure(
-              send_closures(h, *ops.hsa, push_pull, t.aeps, linear, under_clusters, true, &unclosed));
-          figures["closure_unclosed_leaves"] = static_cast<double>(unclosed);
-          push_pull.pull(field);  // the moments the next gather reads, closed
-        }
+        close_sends();
+        push_pull.pull(field);  // the moments the next gather reads, closed
         auto phase = ctx.phase("solve");
         converged = iterate(ctx, push_pull, all, field, bound);
       }
