@@ -1,11 +1,20 @@
 #include "hrad/solvers/hsa_links.h"
 
 #include <algorithm>
+#include <limits>
+#include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 namespace hrad {
+namespace {
+
+// Links per chunk of the parallel build: a fixed size, so that the weights' order does not depend
+// on the thread count.
+constexpr std::size_t kBuildChunk = 2048;
+
+}  // namespace
 
 HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, const ClusterTree* tree,
                    const ClusterTransfer& geometry)
@@ -29,69 +38,118 @@ HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, co
   }
   links_.resize(offsets_[n]);
   cluster_links_.resize(cluster_offsets_[n]);
-  std::vector<std::uint64_t> cursor(offsets_.begin(), offsets_.end() - 1);
-  std::vector<std::uint64_t> cluster_cursor(cluster_offsets_.begin(), cluster_offsets_.end() - 1);
+  // Each link's places, in link order within its receivers' ranges: slot[2 i] for p's direction,
+  // slot[2 i + 1] for q's. 32 bits: four billion directed links would need 300 GB.
+  if (std::max(offsets_[n], cluster_offsets_[n]) > std::numeric_limits<std::uint32_t>::max())
+    throw std::length_error("hierarchical: more than 2^32 directed links of one kind");
+  std::vector<std::uint32_t> slot(2 * links.size());
+  {
+    std::vector<std::uint64_t> cursor(offsets_.begin(), offsets_.end() - 1);
+    std::vector<std::uint64_t> cluster_cursor(cluster_offsets_.begin(), cluster_offsets_.end() - 1);
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const Link& l = links[i];
+      auto& at = with_cluster(l) ? cluster_cursor : cursor;
+      if (l.f_pq > 0.0) slot[2 * i] = static_cast<std::uint32_t>(at[dense(l.p)]++);
+      if (l.f_qp > 0.0) slot[2 * i + 1] = static_cast<std::uint32_t>(at[dense(l.q)]++);
+    }
+  }
   auto patches = [&](NodeRef r) { return is_cluster(r) ? tree->patches(cluster_index(r)).size() : std::size_t{0}; };
   if (tree != nullptr && tree->size() > 0) {
     position_.assign(scene_.patches.size(), 0);
     const std::span<const int> all = tree->patches(0);
     for (std::size_t k = 0; k < all.size(); ++k) position_[static_cast<std::size_t>(all[k])] = static_cast<int>(k);
   }
-  for (const Link& l : links) {
-    const std::size_t dp = dense(l.p), dq = dense(l.q);
-    if (!with_cluster(l)) {
-      auto directed = [&](std::size_t source, const std::array<float, 9>& shape, const std::array<float, 9>& weight,
-                          double f) {
-        DirectedLink d{static_cast<std::int32_t>(source), shape, weight};
-        if (!l.shaped) {
-          // A flat field on both sides: the source's radiosity integral (the moments' sum over its
-          // basis, whose functions sum to 1) over its area.
-          d.factor.fill(static_cast<float>(f));
-          const ElementNode& s = h_.node(static_cast<NodeId>(source));
-          d.weight.fill(0.0f);
-          for (int k = 0; k < (s.vertex_count == 4 ? 9 : 6); ++k) d.weight[k] = static_cast<float>(1.0 / s.area);
-        }
-        return d;
+  // The links in chunks of a fixed size, in parallel. A chunk's cluster-end weights go to a buffer
+  // of its own, placed after the earlier chunks' when all are done: weights_ is in link order at
+  // any thread count.
+  struct Chunk {
+    std::vector<float> weights;
+    std::uint64_t terms = 0;
+    bool cluster_receivers = false;
+  };
+  const std::size_t chunks = (links.size() + kBuildChunk - 1) / kBuildChunk;
+  std::vector<Chunk> chunk(chunks);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+    Chunk& out = chunk[k];
+    for (std::size_t i = k * kBuildChunk, end = std::min(links.size(), i + kBuildChunk); i < end; ++i) {
+      const Link& l = links[i];
+      if (!with_cluster(l)) {
+        auto directed = [&](std::size_t source, const std::array<float, 9>& shape, const std::array<float, 9>& weight,
+                            double f) {
+          DirectedLink d{static_cast<std::int32_t>(source), shape, weight};
+          if (!l.shaped) {
+            // A flat field on both sides: the source's radiosity integral (the moments' sum over its
+            // basis, whose functions sum to 1) over its area.
+            d.factor.fill(static_cast<float>(f));
+            const ElementNode& s = h_.node(static_cast<NodeId>(source));
+            d.weight.fill(0.0f);
+            for (int j = 0; j < (s.vertex_count == 4 ? 9 : 6); ++j) d.weight[j] = static_cast<float>(1.0 / s.area);
+          }
+          return d;
+        };
+        if (l.f_pq > 0.0) links_[slot[2 * i]] = directed(dense(l.q), l.shape_p, l.source_q, l.f_pq);
+        if (l.f_qp > 0.0) links_[slot[2 * i + 1]] = directed(dense(l.p), l.shape_q, l.source_p, l.f_qp);
+        continue;
+      }
+      // Each cluster end's two weights, once for both directions (hsa_links.h ClusterLink), at
+      // offsets within the chunk's buffer.
+      struct EndWeights {
+        std::uint64_t gets = 0, sends = 0;
+        double w_gets = 0.0;
       };
-      if (l.f_pq > 0.0) links_[cursor[dp]++] = directed(dq, l.shape_p, l.source_q, l.f_pq);
-      if (l.f_qp > 0.0) links_[cursor[dq]++] = directed(dp, l.shape_q, l.source_p, l.f_qp);
-      continue;
-    }
-    // Each cluster end's two weights, once for both directions (hsa_links.h ClusterLink).
-    struct EndWeights {
-      std::uint64_t gets = 0, sends = 0;
-      double w_gets = 0.0;
-    };
-    auto end_weights = [&](NodeRef end, NodeRef other, const ShadedPatches* shaded) {
-      EndWeights e;
-      if (!is_cluster(end)) return e;
-      e.sends = weights_.size();
-      const double w_sends = geometry.link_weights(end, other, shaded, &weights_, LinkWeights::kSends);
-      if (w_sends > 0.0) {
-        e.gets = e.sends, e.w_gets = w_sends;
+      auto end_weights = [&](NodeRef end, NodeRef other, const ShadedPatches* shaded) {
+        EndWeights e;
+        if (!is_cluster(end)) return e;
+        e.sends = out.weights.size();
+        const double w_sends = geometry.link_weights(end, other, shaded, &out.weights, LinkWeights::kSends);
+        if (w_sends > 0.0) {
+          e.gets = e.sends, e.w_gets = w_sends;
+          return e;
+        }
+        // No ray of the end's own reached the other end: by the patches' facing weights.
+        e.gets = out.weights.size();
+        e.w_gets = geometry.link_weights(end, other, shaded, &out.weights, LinkWeights::kGets);
         return e;
-      }
-      // No ray of the end's own reached the other end: by the patches' facing weights.
-      e.gets = weights_.size();
-      e.w_gets = geometry.link_weights(end, other, shaded, &weights_, LinkWeights::kGets);
-      return e;
-    };
-    const EndWeights end_p = end_weights(l.p, l.q, l.hidden_p.get());
-    const EndWeights end_q = end_weights(l.q, l.p, l.hidden_q.get());
-    auto directed = [&](NodeRef receiver, NodeRef source, double f, const EndWeights& r, const EndWeights& s) {
-      const double area = geometry.shape(receiver).area;
-      const double sent = is_cluster(source) ? 1.0 : f * area;  // per unit of shown()
-      ClusterLink c{static_cast<std::int32_t>(dense(source)), static_cast<float>(sent / area), r.gets, s.sends};
-      if (is_cluster(receiver)) {
-        c.factor = r.w_gets > 0.0 ? static_cast<float>(sent / r.w_gets) : 0.0f;
-        cluster_receivers_ = true;
-      }
-      cluster_terms_ += 1 + patches(receiver) + patches(source);
-      return c;
-    };
-    if (l.f_pq > 0.0) cluster_links_[cluster_cursor[dp]++] = directed(l.p, l.q, l.f_pq, end_p, end_q);
-    if (l.f_qp > 0.0) cluster_links_[cluster_cursor[dq]++] = directed(l.q, l.p, l.f_qp, end_q, end_p);
+      };
+      const EndWeights end_p = end_weights(l.p, l.q, l.hidden_p.get());
+      const EndWeights end_q = end_weights(l.q, l.p, l.hidden_q.get());
+      auto directed = [&](NodeRef receiver, NodeRef source, double f, const EndWeights& r, const EndWeights& s) {
+        const double area = geometry.shape(receiver).area;
+        const double sent = is_cluster(source) ? 1.0 : f * area;  // per unit of shown()
+        ClusterLink c{static_cast<std::int32_t>(dense(source)), static_cast<float>(sent / area), r.gets, s.sends};
+        if (is_cluster(receiver)) {
+          c.factor = r.w_gets > 0.0 ? static_cast<float>(sent / r.w_gets) : 0.0f;
+          out.cluster_receivers = true;
+        }
+        out.terms += 1 + patches(receiver) + patches(source);
+        return c;
+      };
+      if (l.f_pq > 0.0) cluster_links_[slot[2 * i]] = directed(l.p, l.q, l.f_pq, end_p, end_q);
+      if (l.f_qp > 0.0) cluster_links_[slot[2 * i + 1]] = directed(l.q, l.p, l.f_qp, end_q, end_p);
+    }
+  });
+  std::vector<std::uint64_t> base(chunks + 1, 0);
+  for (std::size_t k = 0; k < chunks; ++k) {
+    base[k + 1] = base[k] + chunk[k].weights.size();
+    cluster_terms_ += chunk[k].terms;
+    cluster_receivers_ = cluster_receivers_ || chunk[k].cluster_receivers;
   }
+  weights_.resize(base[chunks]);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+    std::copy(chunk[k].weights.begin(), chunk[k].weights.end(),
+              weights_.begin() + static_cast<std::ptrdiff_t>(base[k]));
+    std::vector<float>().swap(chunk[k].weights);
+    for (std::size_t i = k * kBuildChunk, end = std::min(links.size(), i + kBuildChunk); i < end; ++i) {
+      const Link& l = links[i];
+      if (!with_cluster(l)) continue;
+      auto place = [&](ClusterLink& c, NodeRef receiver, NodeRef source) {
+        if (is_cluster(receiver)) c.receiver_q += base[k];
+        if (is_cluster(source)) c.source_q += base[k];
+      };
+      if (l.f_pq > 0.0) place(cluster_links_[slot[2 * i]], l.p, l.q);
+      if (l.f_qp > 0.0) place(cluster_links_[slot[2 * i + 1]], l.q, l.p);
+    }
+  });
   if (cluster_receivers_) carried_.assign(cluster_links_.size(), Rgb::Zero());
 }
 

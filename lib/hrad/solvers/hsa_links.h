@@ -6,8 +6,10 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
+#include "hrad/core/huge_page_allocator.h"
 #include "hrad/solvers/cluster_transfer.h"
 #include "hrad/solvers/cluster_tree.h"
 #include "hrad/solvers/link_operator.h"
@@ -82,11 +84,13 @@ class HsaLinks final : public LinkOperator {
     /// source with A_R F folded in): 1 / A_R for an element receiver; 1 / W_R for a cluster
     /// receiver, whose patch j then gets q_j times it.
     float factor;
-    std::uint64_t receiver_q = 0;  ///< a cluster receiver's q_j (what it gets): weights_[receiver_q + j]
-    std::uint64_t source_q = 0;    ///< a cluster source's q_j (what it sends): weights_[source_q + j]
+    std::uint64_t receiver_q;  ///< a cluster receiver's q_j (what it gets): weights_[receiver_q + j]
+    std::uint64_t source_q;    ///< a cluster source's q_j (what it sends): weights_[source_q + j]
   };
   static_assert(sizeof(DirectedLink) == 76);
   static_assert(sizeof(ClusterLink) == 24);
+  static_assert(std::is_trivially_default_constructible_v<DirectedLink> &&
+                std::is_trivially_default_constructible_v<ClusterLink>);  // BigVector leaves them unwritten
 
   /// What the source of cluster link k sends towards its receiver, per unit of the factor.
   Rgb shown(const NodeField& field, std::uint64_t k) const;
@@ -96,11 +100,13 @@ class HsaLinks final : public LinkOperator {
   const ClusterTree* tree_ = nullptr;
   const ElementHierarchy& h_;
   std::vector<std::uint64_t> offsets_, cluster_offsets_;  ///< per dense receiver, + 1
-  std::vector<DirectedLink> links_;
-  std::vector<ClusterLink> cluster_links_;
+  // Huge pages, and written once each by the parallel build (huge_page_allocator.h): GBs on
+  // large scenes, whose zero-filling by one thread was most of the build.
+  BigVector<DirectedLink> links_;
+  BigVector<ClusterLink> cluster_links_;
   std::uint64_t cluster_terms_ = 0;
   bool cluster_receivers_ = false;  ///< some link has a cluster receiver
-  std::vector<float> weights_;      ///< per cluster end of a link, its patches' two q_j in tree order
+  BigVector<float> weights_;        ///< per cluster end of a link, its patches' two q_j in tree order
   /// Per patch: its index in the patch list of each cluster above it is position_[p] - begin.
   std::vector<int> position_;
   mutable std::vector<Rgb> carried_;  ///< per cluster link of a cluster receiver: factor times what the source shows

@@ -1,5 +1,6 @@
 #include "hrad/solvers/refine.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "hrad/core/progress.h"
@@ -25,6 +26,126 @@ Candidate child_of(const Candidate& parent, NodeRef p, NodeRef q) {
 
 namespace {
 
+// Candidates per chunk of a level's sorting: a fixed size, so that what the chunks write, and
+// where, does not depend on the thread count.
+constexpr std::size_t kSortChunk = 4096;
+
+// Where the candidates of one chunk go: their links, unseen pairs and child pairs.
+struct SortCounts {
+  std::size_t links = 0, unseen = 0, next = 0;
+};
+
+// The side a split decision splits.
+NodeRef split_side(const Candidate& c) { return c.decision == Decision::kSplitP ? c.p : c.q; }
+
+// The pairs a decided candidate passes to the next level.
+std::size_t child_count(const Candidate& c) {
+  switch (c.decision) {
+    case Decision::kSelf:
+      return 3;
+    case Decision::kSplitP:
+    case Decision::kSplitQ:
+      return is_cluster(split_side(c)) ? 2 : 4;
+    default:
+      return 0;
+  }
+}
+
+// Sorts a level's decided candidates, in their order, into the result's links and unseen pairs
+// and the next level's pairs. Only the element splits are serial (the hierarchy's ids follow their
+// order); the rest runs over chunks with offsets from the chunks' counts. Each candidate's shared
+// occluder lists are released as it is sorted, so that the level is freed without their serial
+// reference counting.
+void sort_decided(ElementHierarchy& h, const ClusterTree* tree, std::vector<Candidate>& work,
+                  std::vector<Candidate>& next, RefineResult& result) {
+  const std::size_t n = work.size();
+  std::vector<NodeId> first(n, kNoNode);  // an element split's first child
+  for (std::size_t i = 0; i < n; ++i) {
+    const Candidate& c = work[i];
+    if (c.decision != Decision::kSplitP && c.decision != Decision::kSplitQ) continue;
+    ++result.splits;
+    if (!is_cluster(split_side(c))) first[i] = h.split(split_side(c));
+  }
+  const std::size_t chunks = (n + kSortChunk - 1) / kSortChunk;
+  std::vector<SortCounts> at(chunks + 1);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+    SortCounts& count = at[k + 1];
+    for (std::size_t i = k * kSortChunk, end = std::min(n, i + kSortChunk); i < end; ++i) {
+      count.links += work[i].decision == Decision::kLink;
+      count.unseen += work[i].decision == Decision::kUnseen;
+      count.next += child_count(work[i]);
+    }
+  });
+  at[0] = {result.links.size(), result.unseen.size(), 0};
+  for (std::size_t k = 0; k < chunks; ++k) {
+    at[k + 1].links += at[k].links;
+    at[k + 1].unseen += at[k].unseen;
+    at[k + 1].next += at[k].next;
+  }
+  result.links.resize(at[chunks].links);
+  result.unseen.resize(at[chunks].unseen);
+  next.clear();
+  next.resize(at[chunks].next);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+    SortCounts to = at[k];
+    for (std::size_t i = k * kSortChunk, end = std::min(n, i + kSortChunk); i < end; ++i) {
+      Candidate& c = work[i];
+      switch (c.decision) {
+        case Decision::kDrop:
+          break;
+        case Decision::kUnseen:
+          result.unseen[to.unseen++] = {c.p, c.q, c.shadow_p, c.shadow_q, c.share_p, c.share_q};
+          break;
+        case Decision::kLink:
+          result.links[to.links++] = {c.p,
+                                      c.q,
+                                      c.f_pq,
+                                      c.f_qp,
+                                      c.partial,
+                                      c.fraction,
+                                      std::move(c.hidden_p),
+                                      std::move(c.hidden_q),
+                                      c.shadow_p,
+                                      c.shadow_q,
+                                      c.share_p,
+                                      c.share_q,
+                                      c.shaped,
+                                      c.shape_p,
+                                      c.shape_q,
+                                      c.source_p,
+                                      c.source_q};
+          break;
+        case Decision::kSelf: {
+          const Cluster& cluster = tree->cluster(cluster_index(c.p));
+          next[to.next++] = child_of(c, cluster.children[0], cluster.children[0]);
+          next[to.next++] = child_of(c, cluster.children[1], cluster.children[1]);
+          next[to.next++] = child_of(c, cluster.children[0], cluster.children[1]);
+          break;
+        }
+        case Decision::kSplitP:
+        case Decision::kSplitQ: {
+          const bool split_p = c.decision == Decision::kSplitP;
+          auto add = [&](NodeRef child) {
+            next[to.next++] = split_p ? child_of(c, child, c.q) : child_of(c, c.p, child);
+          };
+          if (is_cluster(split_side(c))) {
+            const Cluster& cluster = tree->cluster(cluster_index(split_side(c)));
+            add(cluster.children[0]);
+            add(cluster.children[1]);
+          } else {
+            for (NodeId child = 0; child < 4; ++child) add(first[i] + child);
+          }
+          break;
+        }
+      }
+      c.occluders.reset();
+      c.found_occluders.reset();
+      c.hidden_p.reset();
+      c.hidden_q.reset();
+    }
+  });
+}
+
 // Refines `work` breadth-first until every pair is linked or dropped (see refine()).
 void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const RefinementOracle& oracle,
                    std::vector<Candidate> work, const std::function<void(std::string_view)>& progress,
@@ -41,46 +162,7 @@ void refine_levels(ElementHierarchy& h, const ClusterTree* tree, const Refinemen
                         decided.advance(range.size());
                       });
     result.candidates += work.size();
-    next.clear();
-    for (Candidate& c : work) {
-      switch (c.decision) {
-        case Decision::kDrop:
-          break;
-        case Decision::kUnseen:
-          result.unseen.push_back({c.p, c.q, c.shadow_p, c.shadow_q, c.share_p, c.share_q});
-          break;
-        case Decision::kLink:
-          result.links.push_back({c.p, c.q, c.f_pq, c.f_qp, c.partial, c.fraction, c.hidden_p, c.hidden_q, c.shadow_p,
-                                  c.shadow_q, c.share_p, c.share_q, c.shaped, c.shape_p, c.shape_q, c.source_p,
-                                  c.source_q});
-          break;
-        case Decision::kSelf: {
-          const Cluster& k = tree->cluster(cluster_index(c.p));
-          next.push_back(child_of(c, k.children[0], k.children[0]));
-          next.push_back(child_of(c, k.children[1], k.children[1]));
-          next.push_back(child_of(c, k.children[0], k.children[1]));
-          break;
-        }
-        case Decision::kSplitP:
-        case Decision::kSplitQ: {
-          ++result.splits;
-          const bool split_p = c.decision == Decision::kSplitP;
-          const NodeRef side = split_p ? c.p : c.q;
-          auto add = [&](NodeRef child) {
-            next.push_back(split_p ? child_of(c, child, c.q) : child_of(c, c.p, child));
-          };
-          if (is_cluster(side)) {
-            const Cluster& k = tree->cluster(cluster_index(side));
-            add(k.children[0]);
-            add(k.children[1]);
-          } else {
-            const NodeId first = h.split(side);
-            for (NodeId k = 0; k < 4; ++k) add(first + k);
-          }
-          break;
-        }
-      }
-    }
+    sort_decided(h, tree, work, next, result);
     ++level;
     // Levels too short to show progress stay quiet.
     if (progress && decided.lines() > 0)

@@ -1,6 +1,8 @@
 // Refinement of node pairs into links (Hanrahan, Salzman & Aupperle 1991, "Refine"), breadth-first
 // and deterministic: all candidates of one level are examined in parallel (the oracle only reads),
-// then decided in order (splits happen only there), so the links do not depend on the thread count.
+// then their element splits are made in order, and they are sorted into links and the next level's
+// pairs in fixed chunks at offsets from the chunks' counts, so the links do not depend on the thread
+// count.
 #pragma once
 
 #include <array>
