@@ -41,13 +41,13 @@ struct Operators {
 
 Operators make_operators(const SolveOptions& options, const ElementHierarchy& h, const ClusterTree* tree,
                          const ClusterTransfer& geometry, const FormFactorEvaluator& evaluator,
-                         const std::vector<Link>& links) {
+                         const LinkVector& links) {
   Operators ops;
   if (options.push == Push::kHsa) {
     ops.hsa = std::make_unique<HsaLinks>(links, h, tree, geometry);
     return ops;
   }
-  std::vector<Link> elements, clusters;
+  LinkVector elements, clusters;
   for (const Link& l : links) (is_cluster(l.p) || is_cluster(l.q) ? clusters : elements).push_back(l);
   ops.leaf = std::make_unique<LeafLinks>(h, evaluator, elements, options.basis == Basis::kLinear);
   ops.hsa = std::make_unique<HsaLinks>(clusters, h, tree, geometry);
@@ -140,8 +140,8 @@ SolveSummary solve_hierarchical(const Scene& scene, const SolveOptions& requeste
   }
 
   const double bound = radiosity_bound(scene);
-  std::vector<Link> links;
-  std::vector<Link> standing;  // links a re-refinement leaves as they are
+  LinkVector links;
+  LinkVector standing;  // links a re-refinement leaves as they are
   std::size_t last_link_count = 0;
   std::vector<UnseenPair> unseen;  // pairs no sampled ray saw through, so far
   Operators ops;

@@ -16,7 +16,7 @@ constexpr std::size_t kBuildChunk = 2048;
 
 }  // namespace
 
-HsaLinks::HsaLinks(const std::vector<Link>& links, const ElementHierarchy& h, const ClusterTree* tree,
+HsaLinks::HsaLinks(const LinkVector& links, const ElementHierarchy& h, const ClusterTree* tree,
                    const ClusterTransfer& geometry)
     : elements_(h.size()), scene_(geometry.scene()), tree_(tree), h_(h) {
   const std::size_t elements = h.size();

@@ -26,7 +26,7 @@ class HsaLinks final : public LinkOperator {
   /// of both ends' weights) and 4 bytes per patch of each cluster end for its weight (8 where it
   /// gets by its facing weights), shared by both directions. `tree` may be null when no link has a
   /// cluster end.
-  HsaLinks(const std::vector<Link>& links, const ElementHierarchy& hierarchy, const ClusterTree* tree,
+  HsaLinks(const LinkVector& links, const ElementHierarchy& hierarchy, const ClusterTree* tree,
            const ClusterTransfer& geometry);
 
   /// Not reentrant: a cluster receiver's links keep what they carry in a buffer of the operator

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "hrad/core/huge_page_allocator.h"
 #include "hrad/mesh/element_hierarchy.h"
 #include "hrad/solvers/cluster_tree.h"
 #include "hrad/solvers/refinement_oracle.h"
@@ -38,6 +39,10 @@ struct Link {
   std::array<float, 9> source_p{}, source_q{};
 };
 
+/// The links of a refinement: GBs on large scenes, in huge pages (huge_page_allocator.h), whose
+/// fewer page faults make growing them cheaper for the one thread that does.
+using LinkVector = BigVector<Link>;
+
 /// A pair decided Decision::kUnseen (p, q as examined), with the shadow errors and shares its test
 /// found: they count in the shadow passes as a link's do (refine.cpp, shadowed()).
 struct UnseenPair {
@@ -48,7 +53,7 @@ struct UnseenPair {
 };
 
 struct RefineResult {
-  std::vector<Link> links;
+  LinkVector links;
   /// The pairs decided Decision::kUnseen that no shadow pass refined again.
   std::vector<UnseenPair> unseen;
   std::uint64_t candidates = 0;  ///< pairs the oracle examined
@@ -76,6 +81,6 @@ inline constexpr int kShadowPasses = 3;
 inline constexpr double kShadowBudget = 0.05;
 
 /// Directed links: both directions of every link that carries a factor.
-std::size_t directed_link_count(const std::vector<Link>& links);
+std::size_t directed_link_count(const LinkVector& links);
 
 }  // namespace hrad

@@ -18,7 +18,7 @@ struct SolvedHierarchy {
   std::unique_ptr<ClusterTree> tree;  ///< null when the solve did not cluster
   /// Every link of the last refinement. Cluster radiosities are not kept: a gather reads a
   /// cluster's patches (their roots' radiosity).
-  std::vector<Link> links;
+  LinkVector links;
 };
 
 }  // namespace hrad
