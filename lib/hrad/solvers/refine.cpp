@@ -26,11 +26,11 @@ Candidate child_of(const Candidate& parent, NodeRef p, NodeRef q) {
 
 namespace {
 
-// Candidates per chunk of a level's sorting: a fixed size, so that what the chunks write, and
-// where, does not depend on the thread count.
+// Candidates per unit of a level's sorting: a fixed size, so that what the units write, and where,
+// does not depend on the thread count.
 constexpr std::size_t kSortChunk = 4096;
 
-// Where the candidates of one chunk go: their links, unseen pairs and child pairs.
+// Where the candidates of one unit go: their links, unseen pairs and child pairs.
 struct SortCounts {
   std::size_t links = 0, unseen = 0, next = 0;
 };
@@ -71,9 +71,8 @@ struct SortUnit {
 
 // Sorts a level's decided candidates, in their order, into the result's links and unseen pairs
 // and the next level's pairs. Only the element splits are serial (the hierarchy's ids follow their
-// order); the rest runs over units of a fixed size, with offsets from the units' counts. Each
-// candidate's shared occluder lists are released as it is sorted, and the level is freed chunk by
-// chunk in parallel.
+// order); the rest runs over units of a fixed size, with offsets from the units' counts. The level
+// is freed chunk by chunk in parallel, its shared occluder lists' counts with it.
 Level sort_decided(ElementHierarchy& h, const ClusterTree* tree, Level& level, RefineResult& result) {
   std::vector<SortUnit> units;
   std::size_t n = 0;
@@ -164,10 +163,6 @@ Level sort_decided(ElementHierarchy& h, const ClusterTree* tree, Level& level, R
           break;
         }
       }
-      c.occluders.reset();
-      c.found_occluders.reset();
-      c.hidden_p.reset();
-      c.hidden_q.reset();
     }
   });
   tbb::parallel_for(std::size_t{0}, level.size(), [&](std::size_t k) { std::vector<Candidate>().swap(level[k]); });
