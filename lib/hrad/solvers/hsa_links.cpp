@@ -36,12 +36,12 @@ HsaLinks::HsaLinks(const LinkVector& links, const ElementHierarchy& h, const Clu
     offsets_[i + 1] += offsets_[i];
     cluster_offsets_[i + 1] += cluster_offsets_[i];
   }
-  links_.resize(offsets_[n]);
-  cluster_links_.resize(cluster_offsets_[n]);
   // Each link's places, in link order within its receivers' ranges: slot[2 i] for p's direction,
   // slot[2 i + 1] for q's. 32 bits: four billion directed links would need 300 GB.
   if (std::max(offsets_[n], cluster_offsets_[n]) > std::numeric_limits<std::uint32_t>::max())
     throw std::length_error("hierarchical: more than 2^32 directed links of one kind");
+  links_.resize(offsets_[n]);
+  cluster_links_.resize(cluster_offsets_[n]);
   std::vector<std::uint32_t> slot(2 * links.size());
   {
     std::vector<std::uint64_t> cursor(offsets_.begin(), offsets_.end() - 1);
