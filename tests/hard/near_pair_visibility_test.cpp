@@ -141,5 +141,37 @@ TEST_F(NearPairVisibility, ExactExchangeRemovesTheRatioBiasOfFewPairs) {
   EXPECT_LT(controlled_sigma, 1.1 * ratio_sigma);
 }
 
+// Guarantee: the point pairs pair_visibility() hands back (which the refinement oracle pools into
+// its points' visibility) are the ones its fraction is made of: as many as carried weight, their
+// kernel-weighted outcomes giving the fraction, each point on its polygon, and each outcome the one
+// the fin's geometry gives for that segment.
+TEST_F(NearPairVisibility, ItsPairsAreThePointsAndOutcomesItsFractionIsMadeOf) {
+  const double fin = 0.3;
+  build({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}},
+        {{fin, 0, 0}, {fin, 1, 0}, {fin, 1, fin}, {fin, 0, fin}});
+  std::vector<VisibilityPair> pairs;
+  const PairVisibility v = evaluator_->pair_visibility(receiver(), 0, source(), 1, nullptr, 256, 3, true, &pairs);
+  ASSERT_EQ(static_cast<int>(pairs.size()), v.rays);
+  double weight = 0.0, visible = 0.0;
+  int blocked = 0;
+  for (const VisibilityPair& pair : pairs) {
+    weight += pair.weight;
+    if (pair.visible) visible += pair.weight;
+    EXPECT_NEAR(pair.x.z(), 0.0, 1e-12);
+    EXPECT_NEAR(pair.y.x(), 0.0, 1e-12);
+    EXPECT_TRUE(pair.x.x() >= 0.0 && pair.x.x() <= 1.0 && pair.x.y() >= 0.0 && pair.x.y() <= 1.0);
+    EXPECT_TRUE(pair.y.y() >= 0.0 && pair.y.y() <= 1.0 && pair.y.z() >= 0.0 && pair.y.z() <= 1.0);
+    // The segment from the floor point behind the fin to the wall point crosses the fin's plane at
+    // the height y.z (x.x - fin) / x.x; the fin spans the floor's whole width.
+    const bool crosses_fin = pair.x.x() > fin && pair.y.z() * (pair.x.x() - fin) / pair.x.x() < fin;
+    if (std::abs(pair.x.x() - fin) > 1e-9) EXPECT_EQ(pair.visible, !crosses_fin) << pair.x.transpose();
+    blocked += pair.visible ? 0 : 1;
+  }
+  EXPECT_GT(blocked, 0);
+  EXPECT_LT(blocked, v.rays);
+  EXPECT_EQ(v.rays - blocked, v.visible_rays);
+  EXPECT_NEAR(visible / weight, v.fraction, 1e-12);
+}
+
 }  // namespace
 }  // namespace hrad

@@ -109,7 +109,9 @@ FormFactorEstimate FormFactorEvaluator::estimate(std::span<const Vec3> receiver,
 PairVisibility FormFactorEvaluator::pair_visibility(std::span<const Vec3> receiver, int receiver_patch,
                                                     std::span<const Vec3> source, int source_patch,
                                                     const std::vector<int>* occluders, int samples,
-                                                    std::uint64_t stream, bool halves) const {
+                                                    std::uint64_t stream, bool halves,
+                                                    std::vector<VisibilityPair>* pairs) const {
+  if (pairs != nullptr) pairs->clear();
   // Ray-traced form factors (Wallace, Elmquist & Haines 1989): the visible fraction weighted by the
   // point-to-point kernel, so that the near parts of a pair count as much as they contribute to F.
   // The kernel is symmetric, so the fraction is the same in both directions and reciprocity is kept.
@@ -183,6 +185,7 @@ PairVisibility FormFactorEvaluator::pair_visibility(std::span<const Vec3> receiv
     PairVisibility::Half& half = v.halves[i < first ? 0 : 1];
     half.weight += w;
     if (sight == Sight::kVisible) ++v.visible_rays, visible += w, half.visible += w;
+    if (pairs != nullptr) pairs->push_back({x, y, w, sight == Sight::kVisible});
   }
   v.error = detail::fraction_error(v.visible_rays, v.rays);
   // E[w]: near pairs take x uniform on the front part A'x and w integrates the kernel over the

@@ -105,6 +105,14 @@ struct KernelVisibility {
   int rays = 0;  ///< rays that carry weight (both points in front of each other)
 };
 
+/// One point pair of FormFactorEvaluator::pair_visibility() that carried weight: its points on the
+/// receiver (x) and the source (y), its kernel weight and its outcome.
+struct VisibilityPair {
+  Vec3 x, y;
+  double weight = 0.0;
+  bool visible = false;
+};
+
 /// A partly visible pair's kernel-weighted visible fraction (FormFactorEvaluator::pair_visibility())
 /// from n point pairs with kernel weights w_i and outcomes V_i (1: unblocked).
 struct PairVisibility {
@@ -228,10 +236,11 @@ class FormFactorEvaluator {
   /// of stream 0's (a link's factor must not come from the samples that decided to keep it); only
   /// `occluders` can block when not null.
   /// With `halves`, the pairs are drawn as two independent stratified halves
-  /// (PairVisibility::controlled()).
+  /// (PairVisibility::controlled()). `pairs`, when given, receives the pairs that carried weight.
   PairVisibility pair_visibility(std::span<const Vec3> receiver, int receiver_patch, std::span<const Vec3> source,
                                  int source_patch, const std::vector<int>* occluders = nullptr, int samples = 0,
-                                 std::uint64_t stream = 0, bool halves = false) const;
+                                 std::uint64_t stream = 0, bool halves = false,
+                                 std::vector<VisibilityPair>* pairs = nullptr) const;
 
   /// Factor between the surfaces of two nodes by `samples` stratified point pairs (uniform by area
   /// on each side): F(p -> q) = A_q mean(cos cos V / (pi r^2)), the visibility V by rays through the

@@ -285,6 +285,34 @@ double shadow_variation(const Side& side, double fraction) {
   return v;
 }
 
+// The visible fraction about each of a side's points, pooled from its own rays and the link's point
+// pairs (FormFactorEvaluator::pair_visibility()): a pair counts for the point nearest its end on the
+// side, and a point's cell gives the ratio of its pairs' kernel-weighted outcomes, which joins the
+// point's rays as that many more. The points cast one ray each (kPointRays), and a partly visible
+// link's shape (shape_of()) scales the points whose ray passed: from one ray, which they are is
+// noise that the scaled shape concentrates, where a link's 16 or more pairs already say where its
+// receiver sees the source.
+void pool_pair_visibility(const std::vector<VisibilityPair>& pairs, bool receiver_side, int point_rays, Side* side) {
+  std::array<double, 9> weight{}, visible{};
+  std::array<int, 9> count{};
+  for (const VisibilityPair& pair : pairs) {
+    const Vec3& z = receiver_side ? pair.x : pair.y;
+    int nearest = 0;
+    double d = INFINITY;
+    for (int i = 0; i < side->points.count; ++i) {
+      const double e = (side->points.x[static_cast<std::size_t>(i)] - z).squaredNorm();
+      if (e < d) d = e, nearest = i;
+    }
+    const std::size_t k = static_cast<std::size_t>(nearest);
+    weight[k] += pair.weight;
+    if (pair.visible) visible[k] += pair.weight;
+    ++count[k];
+  }
+  for (std::size_t i = 0; i < static_cast<std::size_t>(side->points.count); ++i)
+    if (side->factor[i] > 0.0 && weight[i] > 0.0)
+      side->visible[i] = (point_rays * side->visible[i] + count[i] * visible[i] / weight[i]) / (point_rays + count[i]);
+}
+
 // The factor's shape over one side: the visible point factors, moved to the link's mean `mean` by
 // adding the difference of means (their quadrature is exact for the field): `sends`; and that shape
 // pulled towards `mean` as far as needed to keep every point >= 0: `receives`. A triangle's centroid
@@ -663,6 +691,9 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
                         .from_to;
   };
   double linked = -1.0;  // not yet computed
+  // Constant leaves: the linked fraction's pairs pool into the points' visibility for the receiving
+  // shapes below.
+  thread_local std::vector<VisibilityPair> pairs;
   if (c.partial) {
     // The linked fraction from point pairs of its own. The test above read `fraction`, and keeping
     // it would keep the estimates that happened to pass: a pair whose samples all missed a thin
@@ -689,8 +720,9 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
                                    std::ceil(budget));
     const int samples = static_cast<int>(std::clamp(wanted, std::max(kFewestLinkSamples, scale * kLeastLinkSamples),
                                                     static_cast<double>(kMostLinkSamples * pair_samples_)));
-    const PairVisibility seen = evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, among, samples,
-                                                           kLinkedFractionStream, true);
+    const PairVisibility seen =
+        evaluator_.pair_visibility(p.polygon(), p.patch, q.polygon(), q.patch, among, samples, kLinkedFractionStream,
+                                   true, tol_.linear_leaves ? nullptr : &pairs);
     if (!(seen.visible() > 0.0)) {
       // Every linked sample was blocked too: nothing to link, as far as these samples know.
       c.decision = Decision::kUnseen;
@@ -729,6 +761,17 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   const bool scaled = c.partial && !tol_.linear_leaves;
   shape_of(sp, c.f_pq, scaled, &c.shape_p, &sends_p);
   shape_of(sq, c.f_qp, scaled, &c.shape_q, &sends_q);
+  if (scaled) {
+    // What each side receives follows its points' rays pooled with the link's pairs; what it sends
+    // stays its points' own (constant leaves send their mean).
+    std::array<float, 9> sends{};
+    Side pooled = sp;
+    pool_pair_visibility(pairs, true, kPointRays, &pooled);
+    shape_of(pooled, c.f_pq, scaled, &c.shape_p, &sends);
+    pooled = sq;
+    pool_pair_visibility(pairs, false, kPointRays, &pooled);
+    shape_of(pooled, c.f_qp, scaled, &c.shape_q, &sends);
+  }
   if (apart) {
     std::array<float, 9> receives{};  // already in c.shape_p, c.shape_q
     shape_of(sp_send, c.f_pq, scaled, &receives, &sends_p);
