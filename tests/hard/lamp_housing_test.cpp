@@ -21,6 +21,7 @@
 #include "hrad/io/emitter_planes.h"
 #include "hrad/reference/reference.h"
 #include "hrad/solvers/solve.h"
+#include "support/ruler_error.h"
 
 namespace hrad {
 namespace {
@@ -104,18 +105,7 @@ std::pair<double, double> ruler_inner_top(const Trough& t) {
       points.push_back(
           {Vec3(lo.x() + (i + 0.5) / 16 * (hi.x() - lo.x()), lo.y(), lo.z() + (k + 0.5) / 8 * (hi.z() - lo.z())),
            top.normal});
-  ReferenceOptions o;
-  o.samples = 4096;
-  std::vector<PointEstimate> out;
-  reference_points(t.scene, points, o, &out);
-  double mean = 0.0, variance = 0.0;
-  const double n = static_cast<double>(out.size());
-  for (const PointEstimate& e : out) {
-    EXPECT_EQ(e.patch, t.inner_top);
-    mean += e.radiosity[0] / n;
-    variance += e.radiosity_se[0] * e.radiosity_se[0] / (n * n);
-  }
-  return {mean, std::sqrt(variance)};
+  return test::ruler_mean(t.scene, points, t.inner_top, 4096);
 }
 
 // Guarantee: the trough's inner top, which no light reaches but from the dark upper strips of the

@@ -2,6 +2,8 @@
 
 #include "hrad/core/error.h"
 
+#include <cmath>
+
 namespace hrad::test {
 
 FaceErrors errors_against_ruler(const Scene& scene, const Solution& solution, const std::vector<FaceEstimate>& ruler) {
@@ -23,6 +25,22 @@ FaceErrors solve_against_ruler(const Scene& scene, const std::vector<FaceEstimat
   const SolveSummary summary = solve(scene, options, &solution);
   if (summary.termination != Termination::kConverged) throw Error("the solve did not converge: " + summary.message);
   return errors_against_ruler(scene, solution, ruler);
+}
+
+std::pair<double, double> ruler_mean(const Scene& scene, const std::vector<ProbePoint>& points, int patch,
+                                     int samples) {
+  ReferenceOptions o;
+  o.samples = samples;
+  std::vector<PointEstimate> out;
+  reference_points(scene, points, o, &out);
+  double mean = 0.0, variance = 0.0;
+  const double n = static_cast<double>(out.size());
+  for (const PointEstimate& e : out) {
+    if (e.patch != patch) throw Error("ruler_mean: a point lies off the patch it is to measure");
+    mean += e.radiosity[0] / n;
+    variance += e.radiosity_se[0] * e.radiosity_se[0] / (n * n);
+  }
+  return {mean, std::sqrt(variance)};
 }
 
 }  // namespace hrad::test

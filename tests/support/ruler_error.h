@@ -4,6 +4,7 @@
 // same norm. Emitters count by what they reflect.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "hrad/analysis/face_error.h"
@@ -20,5 +21,9 @@ FaceErrors errors_against_ruler(const Scene& scene, const Solution& solution, co
 /// Solves `scene` with `options` (hierarchical on two threads, the rest as given) and scores it
 /// against `ruler` as errors_against_ruler(); throws hrad::Error when the solve does not converge.
 FaceErrors solve_against_ruler(const Scene& scene, const std::vector<FaceEstimate>& ruler, SolveOptions options);
+
+/// The ruler's mean radiosity (channel 0) over point estimates at `points` (`samples` paths each),
+/// with its standard error; every point must lie on patch `patch` (hrad::Error otherwise).
+std::pair<double, double> ruler_mean(const Scene& scene, const std::vector<ProbePoint>& points, int patch, int samples);
 
 }  // namespace hrad::test
