@@ -92,12 +92,15 @@ constexpr double kLeastLinkSamples = 16.0;
 constexpr double kFewestLinkSamples = 4.0;
 // A slight pair neither of whose sides can split, whose largest point factor weighs at most this
 // share of the tolerance, casts no rays from its points: each point takes the link's visible
-// fraction. Where the shadow falls across it then errs by at most that factor, as small as what
-// the link's sampling leaves (kGatherNoise). RenderPark's office2 at --basis linear --aeps total/50
-// --feps 0.04 --visibility-samples 4: rays -31%; the peers' rooms at the defaults -3 to -7%. No
-// error per polygon there, nor the Cornell box's displayed field (the quick sweep), moved by more
-// than 0.002 points; at 0.3 SPLASH-2's room's linear solve went from 1.445% to 1.482%.
-constexpr double kUniformVisibilityShare = 0.1;
+// fraction. Where the shadow falls across it then errs by at most that factor. The share is small
+// because these errors do not average out: a point's visibility weighs both what it gathers through
+// the link and what it sends back, and the uniform fraction drops that round trip's correlation
+// (mean v^2 >= (mean v)^2) on every slight link of a fine mesh at once. SPLASH-2's room at --basis
+// linear --source-levels auto --aeps total/4000, from the Monte Carlo ruler: 0.738% at 0 and at
+// 0.03, 0.743% at 0.05, 0.778% at 0.1 (mean bias -0.61% -> -0.65%). RenderPark's office2 at --basis
+// linear --aeps total/50 --feps 0.04 --visibility-samples 4: rays -19% at 0.03 (-31% at 0.1), the
+// same error.
+constexpr double kUniformVisibilityShare = 0.03;
 
 // One side of an element pair: the receiver's points, their unoccluded point factors to the
 // source, and their visible fractions of it.
