@@ -602,12 +602,11 @@ void ErrorBoundOracle::decide_elements(Candidate& c) const {
   c.visible = c.known_visible || !evaluator_.effects().visibility;
   std::vector<int> occluders;
   double largest = 0.0;  // the largest point factor, weighted, in units of the tolerance
-  const auto slight = [&] {
+  if (!c.visible) {
     const auto [e_p, e_q] = weighted(c.p, c.q, sp.largest(), sq.largest());
     largest = std::max(e_p, e_q);
-    return largest <= 1.0;
-  };
-  const bool classified = !c.visible && !slight();
+  }
+  const bool classified = !c.visible && !(largest <= 1.0);  // not slight
   if (classified) {
     const PairClass cls =
         evaluator_.classify(p.polygon(), p.patch, q.polygon(), q.patch, c.occluders.get(), &occluders);
