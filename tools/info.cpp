@@ -34,10 +34,19 @@ void add_info_command(CLI::App& app) {
   cmd->add_flag("--json", args->json, "Print the summary as JSON");
   cmd->callback([args] {
     std::vector<std::string> warnings;
-    const Scene scene = read_scene(args->scene, &warnings);
+    // Read whole to name the near faces, then as the solvers read it (cut along them) for the summary.
+    ObjReadOptions whole;
+    whole.cut_near_faces = false;
+    Scene scene = read_scene(args->scene, &warnings, whole);
     for (const std::string& w : warnings) std::cerr << w << "\n";
     for (const std::string& w : scene_warnings(scene)) std::cerr << scene.path << ": warning: " << w << "\n";
-    if (const std::string w = near_faces_warning(scene); !w.empty()) std::cerr << w << "\n";
+    if (find_near_faces(scene).pairs > 0) {
+      const std::size_t before = scene.patches.size();
+      Scene cut = read_scene(args->scene);
+      const std::string note = near_faces_note(scene, cut.patches.size() > before ? cut.patches.size() - before : 0);
+      if (!note.empty()) std::cerr << note << "\n";
+      scene = std::move(cut);
+    }
     const nlohmann::json j = scene_summary_json(scene);
     if (args->json) {
       std::cout << j.dump(2) << "\n";

@@ -83,7 +83,10 @@ void add_reference_command(CLI::App& app) {
     validate_reference_options(options);
 
     std::vector<std::string> warnings;
-    const Scene scene = read_scene(args->scene, &warnings);
+    // Faces whole: the ruler traces surfaces, which cutting along near faces does not change (nor its samples).
+    ObjReadOptions read_options;
+    read_options.cut_near_faces = false;
+    const Scene scene = read_scene(args->scene, &warnings, read_options);
     std::vector<ProbePoint> points;
     if (!args->faces) points = read_points_csv(args->points);
     for (const std::string& w : warnings) std::cerr << w << "\n";

@@ -55,9 +55,10 @@
 //                          lib/hrad/solvers/linear_basis.h, field_links.h, leaf_links.h)
 //   --balance              balance the leaves after meshing or refinement (a restricted quadtree: at
 //                          most one level between edge neighbours, so no long T-edges in the output)
-//   --cut-near-faces       cut each face along the outlines of parallel faces facing it from at most
-//                          a tenth of their size (lib/hrad/io/near_faces.h); the faces stay, their
-//                          patches multiply. The solution PLY says so, and render/probe cut alike
+//   --no-cut-near-faces    keep faces whole that the reader cuts by default along the outlines of
+//                          parallel faces facing them from at most a tenth of their size
+//                          (lib/hrad/io/near_faces.h; the faces stay, their patches multiply), and
+//                          warn of such pairs instead. The solution PLY says so, and render/probe read alike
 //   --threads N            worker threads (default: all cores)
 //   --report R.json        the solve report (see lib/hrad/report/report_json.h)
 // Every solve prints where the power went (reference/power_balance.h): emitted, absorbed, onto
@@ -123,7 +124,7 @@ void add_solve_command(CLI::App& app) {
     int max_iterations = 10000, visibility_samples = kDefaultVisibilitySamples, threads = 0;
     std::uint64_t seed = 0;
     std::string source_levels = "0";
-    bool quiet = false, balance = false, cut_near_faces = false;
+    bool quiet = false, balance = false, keep_near_faces = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("SCENE", args->scene, "Scene file (.obj)")->required();
@@ -167,9 +168,9 @@ void add_solve_command(CLI::App& app) {
                   "Hierarchical: hsa (default, O(links) gather) | leaf (links resolved to leaves)");
   cmd->add_option("--basis", args->basis, "Radiosity per element: constant (default) | linear (bilinear on quads)");
   cmd->add_flag("--balance", args->balance, "At most one level between edge neighbours (no long T-edges)");
-  cmd->add_flag("--cut-near-faces", args->cut_near_faces,
-                "Cut faces along the outlines of parallel faces facing them from nearby (a box 1 cm above the "
-                "floor, a cabinet 1 mm from its wall)");
+  cmd->add_flag("--no-cut-near-faces", args->keep_near_faces,
+                "Keep faces whole that are cut by default along the outlines of parallel faces facing them from "
+                "nearby (a box 1 cm above the floor, a cabinet 1 mm from its wall), and warn of such pairs");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--report", args->report, "Write the solve report (JSON) here");
   cmd->add_option("--out", args->out, "Write the leaf mesh (PLY) here");
@@ -227,10 +228,10 @@ void add_solve_command(CLI::App& app) {
     std::vector<std::string> warnings;
     ObjReadOptions read_options;
     read_options.progress = o.progress;
-    read_options.cut_near_faces = args->cut_near_faces;
+    read_options.cut_near_faces = !args->keep_near_faces;
     const Scene scene = read_scene(args->scene, &warnings, read_options);
     for (const std::string& w : scene_warnings(scene)) warnings.push_back(scene.path + ": warning: " + w);
-    if (!args->cut_near_faces)
+    if (args->keep_near_faces)
       if (std::string w = near_faces_warning(scene); !w.empty()) warnings.push_back(std::move(w));
     for (const std::string& w : warnings) std::cerr << w << "\n";
     std::vector<std::pair<std::string, std::string>> inputs;
@@ -274,6 +275,7 @@ void add_solve_command(CLI::App& app) {
 
     if (!args->report.empty()) {
       nlohmann::json report = solve_report_json(scene, o, summary, solution);
+      report["options"]["cut_near_faces"] = !args->keep_near_faces;
       report["power_balance"] = balance ? power_balance_json(*balance) : nlohmann::json(nullptr);
       report["warnings"] = warnings;  // the reader's and the scene checks', as printed on stderr
       write_json_file(args->report, report);
@@ -288,7 +290,7 @@ void add_solve_command(CLI::App& app) {
       }
       std::optional<SolutionLinks> links;
       if (kept.hierarchy) links = stored_links(kept);
-      solution.near_faces_cut = args->cut_near_faces;
+      solution.near_faces_cut = !args->keep_near_faces;
       write_solution_ply(args->out, solution, exposure, links ? &*links : nullptr);
     }
     outputs.commit();

@@ -77,7 +77,7 @@ void add_sweep_command(CLI::App& app) {
     std::string elements, patches, feps, aeps, reference_from, push = "hsa", basis = "constant,linear";
     int visibility_samples = 0;
     std::string source_levels = "0";
-    bool no_gather = false, cut_near_faces = false;
+    bool no_gather = false, keep_near_faces = false;
     double gather_tolerance = 1e-2;
     std::string gather_sources = "links";
   };
@@ -93,8 +93,9 @@ void add_sweep_command(CLI::App& app) {
                   "Reuse the reference of an earlier sweep of this scene (its output folder)");
   cmd->add_option("--samples", args->samples, "Error samples per patch (default 256; 64 with --quick)");
   cmd->add_option("--target-error", args->target_error, "Relative L2 error for the time-to-error ratio (default 0.01)");
-  cmd->add_flag("--cut-near-faces", args->cut_near_faces,
-                "Cut faces along the outlines of parallel faces facing them from nearby, as hrad solve does");
+  cmd->add_flag("--no-cut-near-faces", args->keep_near_faces,
+                "Keep faces whole that are cut by default along the outlines of parallel faces facing them from "
+                "nearby, as hrad solve --no-cut-near-faces does");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   cmd->add_option("--elements", args->elements, "Element counts of the full and substructuring runs, e.g. 64,128,256");
   cmd->add_option("--patches", args->patches, "Shooting-patch counts of the substructuring patch-size runs");
@@ -161,9 +162,9 @@ void add_sweep_command(CLI::App& app) {
     outputs.check_inputs(inputs);
     std::vector<std::string> warnings;
     ObjReadOptions read_options;
-    read_options.cut_near_faces = args->cut_near_faces;
+    read_options.cut_near_faces = !args->keep_near_faces;
     const Scene scene = read_scene(args->scene, &warnings, read_options);
-    if (!args->cut_near_faces)
+    if (args->keep_near_faces)
       if (std::string w = near_faces_warning(scene); !w.empty()) warnings.push_back(std::move(w));
     for (const auto& w : warnings) std::cerr << w << "\n";
     inputs.clear();
@@ -257,7 +258,7 @@ void add_sweep_command(CLI::App& app) {
       if (args->visibility_samples > 0) o << " --visibility-samples " << args->visibility_samples;
       if (args->source_levels != "0") o << " --source-levels " << args->source_levels;
       if (args->no_gather) o << " --no-gather";
-      if (args->cut_near_faces) o << " --cut-near-faces";
+      if (args->keep_near_faces) o << " --no-cut-near-faces";
       if (cmd->count("--gather-tolerance")) o << " --gather-tolerance " << args->gather_tolerance;
       if (cmd->count("--gather-sources")) o << " --gather-sources " << args->gather_sources;
       // Every other option given, so that the line reruns exactly this sweep.

@@ -123,27 +123,28 @@ TEST(CliSolve, SameBytesRunAfterRunAndWhateverTheThreadCount) {
   }
 }
 
-TEST(CliSweep, CutsAlongNearFacesWhenAskedAndNamesThemOtherwise) {
-  // The bundled lamp 1 mm in front of its wall: without --cut-near-faces the sweep names the pair as
-  // hrad solve does; with it, no warning, the option in command.txt, and the wall cut into more
-  // patches, so that the uncut sweep's reference samples are refused as another scene's.
+TEST(CliSweep, CutsAlongNearFacesUnlessToldAndThenNamesThem) {
+  // The bundled lamp 1 mm in front of its wall: by default the sweep cuts the wall along the lamp, silently,
+  // as hrad solve does; with --no-cut-near-faces it names the pair, says so in command.txt, and keeps the
+  // wall whole (fewer patches), so that the cut sweep's reference samples are refused as another scene's.
   TempDir dir;
   const std::string base =
       "sweep notebooks_data/scenes/lamp_near_wall.obj --quick --elements 64 --patches 12 --feps 0.3 --aeps 0.001 "
       "--no-gather --basis constant --samples 64 --out ";
-  const RunResult uncut = run_hrad(base + dir.path("uncut"), dir);
-  ASSERT_EQ(uncut.exit_code, 0) << uncut.err;
-  EXPECT_NE(uncut.err.find("lamp_near_wall.obj:53: warning: 1 pair of faces face each other from nearby"),
-            std::string::npos)
-      << uncut.err;
-  const RunResult cut = run_hrad(base + dir.path("cut") + " --cut-near-faces", dir);
+  const RunResult cut = run_hrad(base + dir.path("cut"), dir);
   ASSERT_EQ(cut.exit_code, 0) << cut.err;
   EXPECT_EQ(cut.err.find("from nearby"), std::string::npos) << cut.err;
-  EXPECT_NE(slurp(dir.path("cut") + "/command.txt").find("--cut-near-faces"), std::string::npos);
+  EXPECT_EQ(slurp(dir.path("cut") + "/command.txt").find("near-faces"), std::string::npos);
+  const RunResult whole = run_hrad(base + dir.path("whole") + " --no-cut-near-faces", dir);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_NE(whole.err.find("lamp_near_wall.obj:53: warning: 1 pair of faces face each other from nearby"),
+            std::string::npos)
+      << whole.err;
+  EXPECT_NE(slurp(dir.path("whole") + "/command.txt").find("--no-cut-near-faces"), std::string::npos);
   const RunResult mixed =
-      run_hrad(base + dir.path("mixed") + " --cut-near-faces --reference-from " + dir.path("uncut"), dir);
+      run_hrad(base + dir.path("mixed") + " --no-cut-near-faces --reference-from " + dir.path("cut"), dir);
   EXPECT_NE(mixed.exit_code, 0);
-  EXPECT_NE(mixed.err.find("reference_samples.json: 768 samples, this scene has 1024"), std::string::npos) << mixed.err;
+  EXPECT_NE(mixed.err.find("reference_samples.json: 1024 samples, this scene has 768"), std::string::npos) << mixed.err;
 }
 
 TEST(CliSweep, WritesEveryOutputAndFinerRunsAreMoreAccurate) {

@@ -156,7 +156,7 @@ TEST(CliWarnings, FlushRugIsCutOutOfTheFloorAndPowerBalances) {
   }
 }
 
-TEST(CliWarnings, AFaceJustAboveTheFloorFacingItIsNamedByInfoAndUnlessTheSolveCutsAlongIt) {
+TEST(CliWarnings, AFaceJustAboveTheFloorFacingItIsCutAlongByDefaultAndNamedOtherwise) {
   TempDir dir;
   dir.write("box.mtl", kMtl);
   // A box's bottom 1 cm above the floor, facing down: the floor is dark under it and lit around it.
@@ -166,19 +166,29 @@ TEST(CliWarnings, AFaceJustAboveTheFloorFacingItIsNamedByInfoAndUnlessTheSolveCu
                                   "v 1.500000 0.010000 0.750000\nv 1.500000 0.010000 0.250000\nf 16 15 14 13\n");
   const std::string warning =
       "bottom.obj:18: warning: 1 pair of faces face each other from nearby (first: line 32, 0.01 in front of line 18)";
-  const RunResult plain = run_hrad("solve " + obj + " --quiet --report " + dir.path("r.json"), dir);
-  ASSERT_EQ(plain.exit_code, 0) << plain.err;
-  EXPECT_NE(plain.err.find(warning), std::string::npos) << plain.err;
-  EXPECT_NE(plain.err.find("--cut-near-faces (hrad solve, hrad sweep) cuts along the outline"), std::string::npos)
-      << plain.err;
+  const RunResult whole = run_hrad("solve " + obj + " --quiet --no-cut-near-faces --report " + dir.path("r.json"), dir);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_NE(whole.err.find(warning), std::string::npos) << whole.err;
+  EXPECT_NE(whole.err.find("without --no-cut-near-faces, hrad solve and hrad sweep cut along the outline"),
+            std::string::npos)
+      << whole.err;
   const nlohmann::json report = nlohmann::json::parse(slurp(dir.path("r.json")));
   EXPECT_NE(report["warnings"].dump().find("face each other from nearby"), std::string::npos);
-  const RunResult info = run_hrad("info " + obj, dir);  // names them before any solve
+  EXPECT_FALSE(report["options"]["cut_near_faces"].get<bool>());
+  // hrad info names them before any solve, as a note of what the solvers cut.
+  const RunResult info = run_hrad("info " + obj, dir);
   EXPECT_EQ(info.exit_code, 0) << info.err;
-  EXPECT_NE(info.err.find(warning), std::string::npos) << info.err;
-  const RunResult cut = run_hrad("solve " + obj + " --quiet --cut-near-faces --report " + dir.path("c.json"), dir);
+  EXPECT_NE(info.err.find("bottom.obj:18: note: 1 pair of faces face each other from nearby (first: line 32, 0.01 in "
+                          "front of line 18): hrad solve and hrad sweep cut the face behind"),
+            std::string::npos)
+      << info.err;
+  // By default the solve cuts the floor along the bottom: nothing to warn of.
+  const RunResult cut = run_hrad("solve " + obj + " --quiet --report " + dir.path("c.json"), dir);
   ASSERT_EQ(cut.exit_code, 0) << cut.err;
   EXPECT_EQ(cut.err.find("from nearby"), std::string::npos) << cut.err;
+  const nlohmann::json cut_report = nlohmann::json::parse(slurp(dir.path("c.json")));
+  EXPECT_TRUE(cut_report["options"]["cut_near_faces"].get<bool>());
+  EXPECT_GT(cut_report["patch_count"].get<int>(), report["patch_count"].get<int>());
   // Lifted to 0.2 (more than a tenth of the bottom's diameter 1.1): nothing to name.
   std::string far = slurp(obj);
   for (std::size_t at = far.find("0.010000"); at != std::string::npos; at = far.find("0.010000"))

@@ -128,7 +128,7 @@ TEST(LampNearWall, HierarchicalRadiosityBalancesTheLampFacingTheWall) {
   }
 }
 
-// Guarantee: cut along the lamp's outline (cut_near_faces(), `--cut-near-faces`), the wall's
+// Guarantee: cut along the lamp's outline (cut_near_faces(), as read_scene() does by default), the wall's
 // footprint is a patch of its own, as bright as the lamp, and sends about 1% of its power into the
 // room through the slit between the housing and the wall; hierarchical radiosity balances power
 // within 1e-3 at its defaults. The footprint's pairs with the room's elements are partly visible,

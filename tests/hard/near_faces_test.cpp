@@ -1,7 +1,7 @@
 // Faces a hair in front of other faces, facing them (the generated office's boxes stand 1 cm above
 // the floor on their bottom faces): the floor is dark under each box and lit around it, a jump that
 // elements at --aeps average away, so a box's bottom gathers the floor element's mean. Cutting the
-// floor along the boxes' outlines (io/near_faces.h, `hrad solve --cut-near-faces`) puts the jump on
+// floor along the boxes' outlines (io/near_faces.h, as `hrad solve` does by default) puts the jump on
 // patch boundaries; what linear elements then miss is near the ruler's noise.
 #include <gtest/gtest.h>
 
@@ -61,14 +61,15 @@ TEST(NearFaces, CuttingAlongBoxesAboveTheFloorHalvesTheOfficesError) {
 }
 
 // Guarantee: a closed room with a table top (a 1 x 0.5 x 0.02 m slab) 10 cm above its floor balances
-// power within 1e-3 at the defaults, cut along the slab (--cut-near-faces) or not, and with the leaf
-// push. Uncut, the slab's outline lies on the points of the floor's elements (halved from the room's
-// corners), and the HSA push gained 0.96% of the power until the oracle tested the fields off them
-// (ATableTopBalancesAtTheDefaultsWhereverItsOutlineFalls). `hrad solve` names the near pair.
+// power within 1e-3 at the defaults, cut along the slab (the reader's default) or not (--no-cut-near-faces), and with
+// the leaf push. Uncut, the slab's outline lies on the points of the floor's elements (halved from the room's corners),
+// and the HSA push gained 0.96% of the power until the oracle tested the fields off them
+// (ATableTopBalancesAtTheDefaultsWhereverItsOutlineFalls). `hrad solve --no-cut-near-faces` names the near
+// pair.
 TEST(NearFaces, ASlabATenthOfItsSizeAboveTheFloorBalancesCutOrNotAndWithTheLeafPush) {
   const std::string path = test::source_dir() + "/notebooks_data/scenes/slab_near_floor.obj";
-  ObjReadOptions cut;
-  cut.cut_near_faces = true;
+  ObjReadOptions whole;
+  whole.cut_near_faces = false;
   const auto balance = [](const Scene& scene, Push push) {
     SolveOptions o;
     o.push = push;
@@ -76,8 +77,8 @@ TEST(NearFaces, ASlabATenthOfItsSizeAboveTheFloorBalancesCutOrNotAndWithTheLeafP
     EXPECT_NE(solve(scene, o, &sol).termination, Termination::kFailed);
     return power_balance(scene, sol);
   };
-  const Scene scene = read_scene(path, nullptr, {});
-  const PowerBalance cut_hsa = balance(read_scene(path, nullptr, cut), Push::kHsa);
+  const Scene scene = read_scene(path, nullptr, whole);
+  const PowerBalance cut_hsa = balance(read_scene(path, nullptr, {}), Push::kHsa);
   const PowerBalance leaf = balance(scene, Push::kLeaf);
   const PowerBalance uncut = balance(scene, Push::kHsa);
   std::printf("residual of the emitted power: cut %.2e, leaf push %.2e, uncut HSA push %.2e\n",

@@ -46,6 +46,8 @@ TEST(NearFaces, TheFloorIsCutAlongTheOutlineOfAFaceJustAboveIt) {
     }
   }
   EXPECT_EQ(footprints, 1);
+  // The reader cuts by default: read_scene() with default options gives the same patches.
+  EXPECT_EQ(read_scene(dir.path("s.obj"), nullptr, {}).patches.size(), s.patches.size());
   // Without the option, or with the quad too far above (0.2 > 0.1 x its diameter 1.41) or facing
   // away from the floor, nothing is cut.
   EXPECT_EQ(floor_and_quad(dir, 0.01, true, false).patches.size(), 2u);
@@ -74,10 +76,12 @@ TEST(NearFaces, FindingNamesThePairsThatWouldSplitAFaceNotThoseThatEncloseIt) {
   // A long corridor's floor and ceiling, 1 apart and 20 long, face each other "from nearby" by the
   // rule, but each one's outline encloses the other: a cut would split nothing, so nothing is named.
   dir.write("m.mtl", "newmtl w\nKd 0.5 0.5 0.5\n");
+  ObjReadOptions whole;  // read as they are, not cut (the default)
+  whole.cut_near_faces = false;
   const std::string obj =
       "mtllib m.mtl\nusemtl w\nv 0 0 0\nv 0 0 20\nv 1 0 20\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 1 1 20\nv 0 1 20\n"
       "f 1 2 3 4\nf 5 6 7 8\n";
-  const NearCuts corridor = find_near_faces(read_scene(dir.write("c.obj", obj), nullptr, {}));
+  const NearCuts corridor = find_near_faces(read_scene(dir.write("c.obj", obj), nullptr, whole));
   EXPECT_EQ(corridor.pairs, 2u);
   EXPECT_EQ(corridor.splitting_pairs, 0u);
   EXPECT_EQ(corridor.first_behind, -1);
@@ -85,7 +89,7 @@ TEST(NearFaces, FindingNamesThePairsThatWouldSplitAFaceNotThoseThatEncloseIt) {
   const std::string shifted =
       "mtllib m.mtl\nusemtl w\nv 0 0 0\nv 0 0 20\nv 1 0 20\nv 1 0 0\nv 0 1 10\nv 1 1 10\nv 1 1 30\nv 0 1 30\n"
       "f 1 2 3 4\nf 5 6 7 8\n";
-  EXPECT_EQ(find_near_faces(read_scene(dir.write("d.obj", shifted), nullptr, {})).splitting_pairs, 2u);
+  EXPECT_EQ(find_near_faces(read_scene(dir.write("d.obj", shifted), nullptr, whole)).splitting_pairs, 2u);
 }
 
 }  // namespace

@@ -37,9 +37,10 @@ struct Solution {
   /// Per face, the linear basis's field (its mean is face_radiosity); empty with the constant basis.
   std::vector<ElementField> face_field;
   std::vector<Rgb> patch_radiosity;  ///< area-weighted mean radiosity of each patch
-  /// The scene's faces were cut along the outlines of faces near them before solving
-  /// (io/near_faces.h, `hrad solve --cut-near-faces`): read the scene alike to use it with this solution.
-  bool near_faces_cut = false;
+  /// The scene's faces were cut along the outlines of faces near them before solving (io/near_faces.h, as
+  /// read_scene() does by default; false after `hrad solve --no-cut-near-faces`): read the scene alike to use
+  /// it with this solution.
+  bool near_faces_cut = true;
   /// Optional, for figures: each link of a hierarchical solve as the segment between the centroids
   /// of its receiver and source elements (empty unless SolveOptions::record_links).
   std::vector<std::pair<Vec3, Vec3>> link_segments;

@@ -115,16 +115,38 @@ NearCuts cut_near_faces(Scene& scene, double gap) {
   return cuts;
 }
 
-std::string near_faces_warning(const Scene& scene) {
+namespace {
+
+// "FILE:LINE: KIND: N pairs of faces face each other from nearby (first: ...)", or "" when none split.
+std::string near_pairs_line(const Scene& scene, const char* kind) {
   const NearCuts near = find_near_faces(scene);
   if (near.splitting_pairs == 0) return {};
   const auto line = [&](int face) { return scene.faces[static_cast<std::size_t>(face)].line; };
   return fmt::format(
-      "{}:{}: warning: {} pair{} of faces face each other from nearby (first: line {}, {:.3g} in front of line {}): "
-      "the face behind is dark in the near face's shadow and lit around it, and its elements average the two "
-      "(the near face gathers that mean); --cut-near-faces (hrad solve, hrad sweep) cuts along the outline",
-      scene.path, line(near.first_behind), near.splitting_pairs, near.splitting_pairs == 1 ? "" : "s",
+      "{}:{}: {}: {} pair{} of faces face each other from nearby (first: line {}, {:.3g} in front of "
+      "line {})",
+      scene.path, line(near.first_behind), kind, near.splitting_pairs, near.splitting_pairs == 1 ? "" : "s",
       line(near.first_front), near.first_gap, line(near.first_behind));
+}
+
+}  // namespace
+
+std::string near_faces_warning(const Scene& uncut) {
+  const std::string head = near_pairs_line(uncut, "warning");
+  if (head.empty()) return {};
+  return head +
+         ": the face behind is dark in the near face's shadow and lit around it, and its elements average the two "
+         "(the near face gathers that mean); without --no-cut-near-faces, hrad solve and hrad sweep cut along the "
+         "outline";
+}
+
+std::string near_faces_note(const Scene& uncut, std::size_t patches_added) {
+  const std::string head = near_pairs_line(uncut, "note");
+  if (head.empty()) return {};
+  return head + fmt::format(
+                    ": hrad solve and hrad sweep cut the face behind along the near face's outline ({} patch{} more; "
+                    "--no-cut-near-faces keeps the faces whole)",
+                    patches_added, patches_added == 1 ? "" : "es");
 }
 
 }  // namespace hrad

@@ -5,7 +5,8 @@
 // what the Monte Carlo ruler finds; the generated office's boxes 10% too much). Cutting the face
 // behind along the near face's outline puts the jump on patch boundaries (discontinuity meshing:
 // Heckbert 1992; Lischinski, Tampieri & Greenberg 1992), as the bundled Cornell box's floor is cut
-// around the blocks' feet by hand. `hrad solve --cut-near-faces`.
+// around the blocks' feet by hand. read_scene() cuts by default; `hrad solve --no-cut-near-faces` keeps
+// the faces whole.
 #pragma once
 
 #include <cstddef>
@@ -29,13 +30,17 @@ struct NearCuts {
   double first_gap = 0.0;  ///< the first splitting pair's distance between the planes
 };
 
-/// The pairs cut_near_faces() would cut, without cutting: `hrad solve` warns of them when it is not
-/// asked to cut (the face behind then gathers its elements' mean across the near face's shadow).
+/// The pairs cut_near_faces() would cut, without cutting: `hrad solve --no-cut-near-faces` warns of them
+/// (the face behind then gathers its elements' mean across the near face's shadow), `hrad info` names them.
 NearCuts find_near_faces(const Scene& scene, double gap = kNearFaceGap);
 
-/// The warning `hrad solve` and `hrad sweep` (when not cutting) and `hrad info` print for find_near_faces()'s
-/// splitting pairs, naming the file, the count and the first pair's lines and gap; "" when none.
-std::string near_faces_warning(const Scene& scene);
+/// The warning `hrad solve` and `hrad sweep` print with --no-cut-near-faces for find_near_faces()'s splitting
+/// pairs of `uncut`, naming the file, the count and the first pair's lines and gap; "" when none.
+std::string near_faces_warning(const Scene& uncut);
+
+/// The note `hrad info` prints for the same pairs of `uncut`: what the solvers cut (`patches_added`
+/// patches more, as read_scene() cuts them); "" when none.
+std::string near_faces_note(const Scene& uncut, std::size_t patches_added);
 
 /// Cuts every patch along the outline, projected onto its plane, of each patch of another face that
 /// faces it from at most `gap` times its own diameter in front (parallel: normals opposite within

@@ -38,8 +38,9 @@ struct ObjReadOptions {
   /// published Cornell box's red wall: 1.5e-3) are still split.
   double planarity_tolerance = 1e-5;
   double max_abs_coordinate = 1e12;  ///< larger coordinates are rejected as garbage
-  /// read_scene(): cut faces along the outlines of faces a hair in front of them (io/near_faces.h).
-  bool cut_near_faces = false;
+  /// read_scene(): cut faces along the outlines of faces a hair in front of them (io/near_faces.h); a scene
+  /// without such pairs is unchanged.
+  bool cut_near_faces = true;
   /// read_scene(): cut faces along the planes of emitters they cross nearby (io/emitter_planes.h).
   bool cut_emitter_planes = true;
   /// Progress lines while reading large files (at most one every 2 s; none for small files).

@@ -23,8 +23,10 @@ constexpr const char* kPatch = "patch";
 // Written as a header comment; a file carrying it has its positions turned back on reading.
 constexpr const char* kZUpComment =
     "hrad axes: stored (x, -z, y) of the scene's (x, y, z): +Z up, as Blender imports PLY";
-// Written when the solve cut the scene's faces along near faces: readers of the scene cut alike.
-constexpr const char* kNearFacesCutComment = "hrad scene: faces cut along near faces (hrad solve --cut-near-faces)";
+// Written when the solve kept faces whole that read_scene() cuts by default along near faces (io/near_faces.h):
+// readers of the scene keep them whole alike.
+constexpr const char* kNearFacesKeptComment =
+    "hrad scene: faces not cut along near faces (hrad solve --no-cut-near-faces)";
 
 std::string links_defect(const SolutionLinks& links);
 
@@ -154,7 +156,7 @@ void write_solution_ply(std::ostream& out, const Solution& solution, double expo
   std::string header = "ply\nformat binary_little_endian 1.0\n";
   header += "comment written by hrad: leaf elements with per-vertex and per-element radiosity\n";
   header += fmt::format("comment {}\n", kZUpComment);
-  if (solution.near_faces_cut) header += fmt::format("comment {}\n", kNearFacesCutComment);
+  if (!solution.near_faces_cut) header += fmt::format("comment {}\n", kNearFacesKeptComment);
   header += fmt::format("element vertex {}\n", solution.vertices.size());
   header += "property double x\nproperty double y\nproperty double z\n";
   header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
@@ -224,8 +226,8 @@ Solution read_solution_ply(const std::string& path, std::optional<SolutionLinks>
     throw Error(fmt::format("{}: not an hrad solution: no 'vertex' or no 'face' element", path));
   bool z_up = false;
   for (const std::string& c : ply.comments) z_up = z_up || c == kZUpComment;
-  bool near_faces_cut = false;
-  for (const std::string& c : ply.comments) near_faces_cut = near_faces_cut || c == kNearFacesCutComment;
+  bool near_faces_cut = true;
+  for (const std::string& c : ply.comments) near_faces_cut = near_faces_cut && c != kNearFacesKeptComment;
 
   const std::vector<double>& x = values_of(path, *vertex, "x");
   const std::vector<double>& y = values_of(path, *vertex, "y");

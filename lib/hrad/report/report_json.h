@@ -24,7 +24,8 @@ namespace hrad {
 ///   seconds {total, <phase>: s, ...}, effects {visibility, color_channels, bounces, cull_facing_away, reasons},
 ///   change_per_iteration [..], peak_memory_bytes, figures {name: value},
 ///   energy {emitted_power, radiosity_power}: sums of area * E and area * B over the elements (channel means),
-///   power_balance (power_balance_json(); written by `hrad solve`, which also prints it),
+///   power_balance (power_balance_json(); written by `hrad solve`, which also prints it, and adds
+///     options.cut_near_faces: whether the reader cut faces along near faces, io/near_faces.h),
 ///   patches: one entry per input face (Scene::faces) in file order:
 ///     {face, line, group, material, area, emission [r,g,b], reflectance [r,g,b], radiosity [r,g,b]}
 ///     where radiosity is the area average over the face's patches.
