@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -295,6 +296,19 @@ TEST(CliProbe, ASolutionIsProbedThroughTheSceneCutAsTheSolveCutIt) {
   // Whole, one patch a face; cut, the floor beneath the box in pieces.
   EXPECT_EQ(static_cast<std::size_t>(patches[1]), faces_before + 6);
   EXPECT_GT(patches[0], patches[1]);
+  // The whole solve's PLY without its comment: probe reads the scene cut, whose patches the leaves do not lie on.
+  std::string ply = slurp(dir.path("whole.ply"));
+  const std::string comment = "comment hrad scene: faces not cut along near faces (hrad solve --no-cut-near-faces)\n";
+  ASSERT_NE(ply.find(comment), std::string::npos);
+  ply.erase(ply.find(comment), comment.size());
+  dir.write("unmarked.ply", ply);
+  const RunResult r = run_hrad("probe " + dir.path("unmarked.ply") + " --scene " + dir.path("cube.obj") + " --points " +
+                                   dir.path("p.csv") + " --quiet --out " + dir.path("u.csv"),
+                               dir);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("unmarked.ply: leaf "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("a solution of another scene, or of this one read otherwise"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("u.csv")));
 }
 
 // Visibility decided from the point, against the independent ruler: a black rectangular occluder

@@ -72,8 +72,9 @@ void write_solution_ply(std::ostream& out, const Solution& solution, double expo
 /// the element and the record.
 Solution read_solution_ply(const std::string& path, std::optional<SolutionLinks>* links = nullptr);
 
-/// Throws hrad::Error naming `solution_path` when a face's patch id is not a patch of `scene`
-/// (read from `scene_path`): a solution of another scene.
+/// Throws hrad::Error naming `solution_path` when a face's patch id is not a patch of `scene` (read from
+/// `scene_path`) or the face does not lie on that patch: a solution of another scene, or of this one read
+/// otherwise (cut along near faces or not).
 void check_solution_patches(const Solution& solution, const std::string& solution_path, const Scene& scene,
                             const std::string& scene_path);
 
