@@ -212,7 +212,8 @@ void solve_exchange_command(const CLI::App& cmd, Args& args) {
   std::vector<std::string> warnings;
   ObjReadOptions read_options;
   read_options.progress = o.progress;
-  read_options.cut_emitter_planes = false;  // view factors are geometry: no lamp's light to follow
+  read_options.cut_emitter_planes = false;  // view factors are geometry: no lamp's light to follow,
+  read_options.cut_near_faces = false;      // and the faces as given
   Vs3Model model;
   if (vs3_input) {
     model = read_vs3(args.scene, &warnings);
@@ -344,7 +345,8 @@ void add_viewfactors_command(CLI::App& app) {
     std::vector<std::string> warnings;
     ObjReadOptions read_options;
     read_options.progress = options.progress;
-    read_options.cut_emitter_planes = false;  // view factors are geometry: no lamp's light to follow
+    read_options.cut_emitter_planes = false;  // view factors are geometry: no lamp's light to follow,
+    read_options.cut_near_faces = false;      // and the faces as given
     Vs3Model model;
     if (vs3_input) {
       model = read_vs3(args->scene, &warnings);
