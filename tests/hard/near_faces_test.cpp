@@ -106,15 +106,9 @@ TEST(NearFaces, BottomsOfBoxesACentimetreAboveTheFloorStayDarkCut) {
     o.basis = basis;
     Solution sol;
     EXPECT_EQ(solve(scene, o, &sol).termination, Termination::kConverged);
-    std::vector<double> b;  // each bottom's area mean over its patches
-    for (const int f : bottoms) {
-      double sum = 0.0, area = 0.0;
-      for (const int p : scene.faces[static_cast<std::size_t>(f)].patches) {
-        sum += scene.patches[static_cast<std::size_t>(p)].area * sol.patch_radiosity[static_cast<std::size_t>(p)][0];
-        area += scene.patches[static_cast<std::size_t>(p)].area;
-      }
-      b.push_back(sum / area);
-    }
+    const std::vector<Rgb> faces = face_radiosity(scene, sol);  // area means over each face's patches
+    std::vector<double> b;
+    for (const int f : bottoms) b.push_back(faces[static_cast<std::size_t>(f)][0]);
     return b;
   };
   const std::vector<double> whole_constant = reflected(whole, Basis::kConstant);
