@@ -9,6 +9,10 @@
 
 namespace hrad {
 
+/// Whether `x` lies on patch `p`: within `tolerance` of its plane and inside its outline (counter-clockwise
+/// about its normal) to the same tolerance.
+bool on_patch(const Patch& p, const Vec3& x, double tolerance);
+
 /// The patch whose front `x` lies on: within `tolerance` of its plane, inside it (to the same
 /// tolerance), and `normal` within ~1.4 mrad of its front normal (cos >= 1 - 1e-6); the first such
 /// patch in scene order, or -1.

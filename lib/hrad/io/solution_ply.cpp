@@ -11,6 +11,7 @@
 #include "hrad/core/error.h"
 #include "hrad/core/face_geometry.h"
 #include "hrad/core/tone_map.h"
+#include "hrad/geometry/front_patch.h"
 #include "hrad/io/atomic_file.h"
 #include "hrad/io/input_file.h"
 #include "hrad/io/ply_file.h"
@@ -305,25 +306,13 @@ void check_solution_patches(const Solution& solution, const std::string& solutio
     if (p < 0 || static_cast<std::size_t>(p) >= scene.patches.size())
       throw Error(
           fmt::format("{}: patch id {} but {} has {} patches", solution_path, p, scene_path, scene.patches.size()));
-  // Each leaf's vertex mean lies on its patch (in its plane, inside its convex outline): patch ids of the same
-  // count but of another reading of the scene (cut along near faces or kept whole) do not.
-  const auto [lo, hi] = scene.bounds();
-  const double tolerance = 1e-6 * (hi - lo).norm();
+  // Each leaf's vertex mean lies on its patch: patch ids of the same count but of another reading of the scene
+  // (cut along near faces or kept whole) do not.
+  const double tolerance = probe_tolerance(scene);
   for (std::size_t i = 0; i < solution.faces.size() && i < solution.face_patch.size(); ++i) {
     if (solution.faces[i].empty()) continue;
-    Vec3 c = Vec3::Zero();
-    for (const int v : solution.faces[i]) c += solution.vertices[static_cast<std::size_t>(v)];
-    c /= static_cast<double>(solution.faces[i].size());
-    const Patch& patch = scene.patches[static_cast<std::size_t>(solution.face_patch[i])];
-    bool left = true, right = true;  // inside every edge, the outline taken either way round
-    for (std::size_t k = 0; k < patch.vertices.size(); ++k) {
-      const Vec3 edge = patch.vertices[(k + 1) % patch.vertices.size()] - patch.vertices[k];
-      const double side = (c - patch.vertices[k]).dot(patch.normal.cross(edge).normalized());
-      left = left && side >= -tolerance;
-      right = right && side <= tolerance;
-    }
-    const bool on = std::abs((c - patch.vertices[0]).dot(patch.normal)) <= tolerance && (left || right);
-    if (!on)
+    if (!on_patch(scene.patches[static_cast<std::size_t>(solution.face_patch[i])], face_centroid(solution, i),
+                  tolerance))
       throw Error(
           fmt::format("{}: leaf {} does not lie on patch {} of {}: a solution of another scene, or of this one "
                       "read otherwise (a solve with --no-cut-near-faces says so in its PLY)",
