@@ -358,9 +358,9 @@ TEST(CliPlots, SweepAndFiguresWithoutMatplotlibStopBeforeTheirWork) {
   }
 }
 
-// A 4000-polygon office (5.7 k patches cut along its boxes' bottoms) needs ~400 MB at its peak (1.0 M links).
+// A 4000-polygon office (5.7 k patches cut along its boxes' bottoms) needs ~350 MB at its peak (0.82 M links).
 // Under a 250 MB address space the estimate (links per element and bytes per link measured on offices,
-// work_estimate.h) refuses it before any work. Under 380 MB the estimate fits (it is an average, not a bound) but the work does
+// work_estimate.h) refuses it before any work (up to ~360 MB). Under 380 MB the estimate fits (it is an average, not a bound) but the work does
 // not: the allocation failure is one line naming what was being allocated and the option that
 // makes it smaller, exit 1, nothing written.
 TEST(CliOutOfMemory, NamesWhatWasBeingAllocatedAndTheOption) {
