@@ -904,21 +904,6 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
         if (!is_cluster(c.p)) sends_p = sends_q;
         if (!is_cluster(c.q)) sends_q = sends_p;
         if (!(sends_p > 0.0) && !(sends_q > 0.0)) return;
-        // Between two clusters, an end whose own rays all missed the other end still gets what the
-        // link brings: among its patches that the other end's own rays reached (some did when that
-        // end sends anything). Opposite an element, the cluster end's own rays found the exchange,
-        // and it shares by them (hsa_links.cpp reads what each patch saw only where its own rays
-        // found nothing).
-        auto reached = [&](NodeRef end, NodeRef other, std::vector<int>& seen, ShadedPatches* s) {
-          if (std::isfinite(geometry_.largest_share(end, other, s))) return;
-          std::sort(seen.begin(), seen.end());
-          for (ShadedPatch& patch : *s)
-            patch.visible = std::binary_search(seen.begin(), seen.end(), patch.patch) ? 1.0f : 0.0f;
-        };
-        if (both) {
-          reached(c.p, c.q, seen_p, &shaded_p);
-          reached(c.q, c.p, seen_q, &shaded_q);
-        }
         // Each cluster end shares what the link brings among its patches by their own factors to
         // the other end (by the part of it each sees and its factor to the other end's bounding
         // sphere where its rays found nothing, ClusterTransfer::link_weights()): a patch that sees
@@ -927,8 +912,22 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
         // such pairs are split. That test reads the carried rays: it splits 0.2-0.4% of the pairs
         // that reach it on the generated 1k scenes, and rays of its own (kFacingRays a patch) cost
         // the generated 3,726-polygon warehouse a seventh of its time.
-        if (!(sends_q * geometry_.largest_share(c.p, c.q, &shaded_p) > most.pq) &&
-            !(sends_p * geometry_.largest_share(c.q, c.p, &shaded_q) > most.qp)) {
+        // Between two clusters, an end whose own rays all missed the other end still gets what the
+        // link brings: among its patches that the other end's own rays reached (some did when that
+        // end sends anything). Opposite an element, the cluster end's own rays found the exchange,
+        // and it shares by them (hsa_links.cpp reads what each patch saw only where its own rays
+        // found nothing).
+        auto largest_share = [&](NodeRef end, NodeRef other, std::vector<int>& seen, ShadedPatches* s) {
+          const double largest = geometry_.largest_share(end, other, s);
+          if (!both || std::isfinite(largest)) return largest;
+          std::sort(seen.begin(), seen.end());
+          for (ShadedPatch& patch : *s)
+            patch.visible = std::binary_search(seen.begin(), seen.end(), patch.patch) ? 1.0f : 0.0f;
+          return geometry_.largest_share(end, other, s);
+        };
+        const double share_p = largest_share(c.p, c.q, seen_p, &shaded_p);
+        const double share_q = largest_share(c.q, c.p, seen_q, &shaded_q);
+        if (!(sends_q * share_p > most.pq) && !(sends_p * share_q > most.qp)) {
           c.decision = Decision::kLink;
           c.f_pq = sends_q / sp.area;  // F(p -> q) as carried
           c.f_qp = sends_p / sq.area;
