@@ -835,7 +835,7 @@ void ErrorBoundOracle::decide_with_cluster(Candidate& c) const {
   const NodeShape sp = geometry_.shape(c.p), sq = geometry_.shape(c.q);
   const double r = (sq.centre - sp.centre).norm(), reach = sp.radius + sq.radius;
   const bool far_apart = r > kClusterSeparation * reach;
-  if (far_apart || r > reach) {
+  if (r > reach) {  // far_apart implies it (kClusterSeparation > 1)
     // The link's factor is one value for the whole pair, which errs by the change of 1/r^2 across
     // the two spheres (HSA 1991 sec. 4's error of a link, rather than the factor's size): far apart,
     // by about 2 (r_p + r_q) / r of it (first order). Nearer, down to disjoint spheres, the first

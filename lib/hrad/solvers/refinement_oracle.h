@@ -126,6 +126,7 @@ struct OracleTolerances {
 /// their bounding radii take the first-order change of 1/r^2 across them as their link's error;
 /// nearer pairs with disjoint spheres its whole range and their ends' share noise (ErrorBoundOracle).
 inline constexpr double kClusterSeparation = 3.0;
+static_assert(kClusterSeparation > 1.0, "a far pair's spheres must be disjoint");
 
 /// The error-bounding oracle. An element pair is linked when the error its link makes, as a
 /// receiver gathers it, is within the tolerance on both sides: at the corner, edge-midpoint and
@@ -153,7 +154,7 @@ inline constexpr double kClusterSeparation = 3.0;
 /// (first order); nearer, the whole range of 1/r^2 over the spheres, ((r + r_p + r_q) / (r - r_p -
 /// r_q))^2 - 1, plus the noise of each cluster end's shares (near_share_noise()). Such near links
 /// stand for the element pairs below them: on the generated warehouse the element link pairs per
-/// patch then stay at 43-46 from 1k to 16k polygons, where splitting every near pair down to its
+/// patch then stay at 42-44 from 1k to 16k polygons, where splitting every near pair down to its
 /// elements made them grow from 56 to 73.
 class ErrorBoundOracle final : public RefinementOracle {
  public:
