@@ -40,10 +40,11 @@ void add_info_command(CLI::App& app) {
     Scene scene = read_scene(args->scene, &warnings, whole);
     for (const std::string& w : warnings) std::cerr << w << "\n";
     for (const std::string& w : scene_warnings(scene)) std::cerr << scene.path << ": warning: " << w << "\n";
-    if (find_near_faces(scene).pairs > 0) {
+    if (const NearCuts near = find_near_faces(scene); near.pairs > 0) {
       const std::size_t before = scene.patches.size();
       Scene cut = read_scene(args->scene);
-      const std::string note = near_faces_note(scene, cut.patches.size() > before ? cut.patches.size() - before : 0);
+      const std::string note =
+          near_faces_note(scene, near, cut.patches.size() > before ? cut.patches.size() - before : 0);
       if (!note.empty()) std::cerr << note << "\n";
       scene = std::move(cut);
     }

@@ -118,8 +118,7 @@ NearCuts cut_near_faces(Scene& scene, double gap) {
 namespace {
 
 // "FILE:LINE: KIND: N pairs of faces face each other from nearby (first: ...)", or "" when none split.
-std::string near_pairs_line(const Scene& scene, const char* kind) {
-  const NearCuts near = find_near_faces(scene);
+std::string near_pairs_line(const Scene& scene, const NearCuts& near, const char* kind) {
   if (near.splitting_pairs == 0) return {};
   const auto line = [&](int face) { return scene.faces[static_cast<std::size_t>(face)].line; };
   return fmt::format(
@@ -132,7 +131,7 @@ std::string near_pairs_line(const Scene& scene, const char* kind) {
 }  // namespace
 
 std::string near_faces_warning(const Scene& uncut) {
-  const std::string head = near_pairs_line(uncut, "warning");
+  const std::string head = near_pairs_line(uncut, find_near_faces(uncut), "warning");
   if (head.empty()) return {};
   return head +
          ": the face behind is dark in the near face's shadow and lit around it, and its elements average the two "
@@ -140,8 +139,8 @@ std::string near_faces_warning(const Scene& uncut) {
          "outline";
 }
 
-std::string near_faces_note(const Scene& uncut, std::size_t patches_added) {
-  const std::string head = near_pairs_line(uncut, "note");
+std::string near_faces_note(const Scene& uncut, const NearCuts& near, std::size_t patches_added) {
+  const std::string head = near_pairs_line(uncut, near, "note");
   if (head.empty()) return {};
   return head + fmt::format(
                     ": hrad solve and hrad sweep cut the face behind along the near face's outline ({} patch{} more; "

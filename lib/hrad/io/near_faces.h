@@ -38,9 +38,10 @@ NearCuts find_near_faces(const Scene& scene, double gap = kNearFaceGap);
 /// pairs of `uncut`, naming the file, the count and the first pair's lines and gap; "" when none.
 std::string near_faces_warning(const Scene& uncut);
 
-/// The note `hrad info` prints for the same pairs of `uncut`: what the solvers cut (`patches_added`
-/// patches more, as read_scene() cuts them); "" when none.
-std::string near_faces_note(const Scene& uncut, std::size_t patches_added);
+/// The note `hrad info` prints for the same pairs of `uncut`, as find_near_faces(uncut) found them
+/// (`near`): what the solvers cut (`patches_added` patches more, as read_scene() cuts them); "" when
+/// none.
+std::string near_faces_note(const Scene& uncut, const NearCuts& near, std::size_t patches_added);
 
 /// Cuts every patch along the outline, projected onto its plane, of each patch of another face that
 /// faces it from at most `gap` times its own diameter in front (parallel: normals opposite within
