@@ -1,6 +1,7 @@
 #include "hrad/core/scene_checks.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -109,17 +110,40 @@ std::vector<std::string> scene_warnings(const Scene& scene) {
   if (scene.emitter_count() == 0)
     out.push_back("no face emits light (no material has Ke > 0): every radiosity will be 0");
 
-  // Faces with nothing in front of them.
+  // Faces with nothing in front of them. The vertices extreme along 26 directions settle most
+  // patches at once (one of them in front); a patch with every corner of the scene's box on or
+  // behind its plane (by half the tolerance) has nothing in front; only the rest scan every face. The
+  // scan alone is quadratic where a floor is tessellated: 3.6 s of `hrad info` on the 64,064-polygon
+  // pillar hall.
+  std::vector<Vec3> extremes;
+  for (int d = 0; d < 27; ++d) {
+    const Vec3 dir(d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1);
+    if (dir.isZero()) continue;
+    const Vec3* best = nullptr;
+    for (const Patch& q : scene.patches)
+      for (const Vec3& v : q.vertices)
+        if (best == nullptr || v.dot(dir) > best->dot(dir)) best = &v;
+    extremes.push_back(*best);
+  }
+  std::array<Vec3, 8> corners;
+  for (int k = 0; k < 8; ++k)
+    corners[static_cast<std::size_t>(k)] =
+        Vec3((k & 1) ? hi.x() : lo.x(), (k & 2) ? hi.y() : lo.y(), (k & 4) ? hi.z() : lo.z());
+  const auto sees_something = [&](const Patch& p) {
+    const Vec3& o = p.vertices[0];
+    for (const Vec3& v : extremes)
+      if ((v - o).dot(p.normal) > tol) return true;
+    double farthest = -INFINITY;  // the box's corner farthest in front of the plane
+    for (const Vec3& corner : corners) farthest = std::max(farthest, (corner - o).dot(p.normal));
+    if (farthest <= 0.5 * tol) return false;
+    for (const Patch& q : scene.patches)
+      if (&q != &p && in_front(p, q, tol)) return true;
+    return false;
+  };
   std::size_t blind = 0;
   double blind_area = 0.0;
   for (const Patch& p : scene.patches) {
-    bool sees = false;
-    for (const Patch& q : scene.patches)
-      if (&q != &p && in_front(p, q, tol)) {
-        sees = true;
-        break;
-      }
-    if (!sees) {
+    if (!sees_something(p)) {
       ++blind;
       blind_area += p.area;
     }
