@@ -95,26 +95,15 @@ std::vector<std::pair<int, int>> flush_pairs(const Scene& scene) {
   return pairs;
 }
 
-std::vector<std::string> scene_warnings(const Scene& scene) {
-  std::vector<std::string> out;
+std::vector<char> patches_facing_nothing(const Scene& scene) {
+  std::vector<char> out(scene.patches.size(), 0);
   if (scene.patches.empty()) return out;
   const auto [lo, hi] = scene.bounds();
   const double tol = 1e-9 * (hi - lo).norm();
-
-  for (const Material& m : scene.materials)
-    if (!m.is_emitter() && named_like_a_light(m.name))
-      out.push_back(fmt::format(
-          "material '{}' looks like a light but emits nothing (Ke 0 or no Ke): Blender's OBJ exporter writes "
-          "Emission shaders and lamps that way; give it Ke r g b (emitted exitance) in the MTL",
-          m.name));
-  if (scene.emitter_count() == 0)
-    out.push_back("no face emits light (no material has Ke > 0): every radiosity will be 0");
-
-  // Faces with nothing in front of them. The vertices extreme along 26 directions settle most
-  // patches at once (one of them in front); a patch with every corner of the scene's box on or
-  // behind its plane (by half the tolerance) has nothing in front; only the rest scan every face. The
-  // scan alone is quadratic where a floor is tessellated: 3.6 s of `hrad info` on the 64,064-polygon
-  // pillar hall.
+  // The vertices extreme along 26 directions settle most patches at once (one of them in front); a
+  // patch with every corner of the scene's box on or behind its plane (by half the tolerance) has
+  // nothing in front; only the rest scan every patch. The scan alone is quadratic where a floor is
+  // tessellated: 3.6 s of `hrad info` on the 64,064-polygon pillar hall.
   std::vector<Vec3> extremes;
   for (int d = 0; d < 27; ++d) {
     const Vec3 dir(d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1);
@@ -140,14 +129,34 @@ std::vector<std::string> scene_warnings(const Scene& scene) {
       if (&q != &p && in_front(p, q, tol)) return true;
     return false;
   };
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) out[i] = sees_something(scene.patches[i]) ? 0 : 1;
+  return out;
+}
+
+std::vector<std::string> scene_warnings(const Scene& scene) {
+  std::vector<std::string> out;
+  if (scene.patches.empty()) return out;
+  const auto [lo, hi] = scene.bounds();
+  const double tol = 1e-9 * (hi - lo).norm();
+
+  for (const Material& m : scene.materials)
+    if (!m.is_emitter() && named_like_a_light(m.name))
+      out.push_back(fmt::format(
+          "material '{}' looks like a light but emits nothing (Ke 0 or no Ke): Blender's OBJ exporter writes "
+          "Emission shaders and lamps that way; give it Ke r g b (emitted exitance) in the MTL",
+          m.name));
+  if (scene.emitter_count() == 0)
+    out.push_back("no face emits light (no material has Ke > 0): every radiosity will be 0");
+
+  // Faces with nothing in front of them.
   std::size_t blind = 0;
   double blind_area = 0.0;
-  for (const Patch& p : scene.patches) {
-    if (!sees_something(p)) {
+  const std::vector<char> facing_nothing = patches_facing_nothing(scene);
+  for (std::size_t i = 0; i < scene.patches.size(); ++i)
+    if (facing_nothing[i]) {
       ++blind;
-      blind_area += p.area;
+      blind_area += scene.patches[i].area;
     }
-  }
   if (scene.patches.size() > 1 && blind_area > 0.5 * scene.total_area())
     out.push_back(fmt::format(
         "{} of {} patches ({:.0f}% of the area) have no other face in front of them: their normals probably point "

@@ -38,6 +38,11 @@ bool patches_overlap(const Patch& a, const Patch& b, const Vec3& n, double tol);
 /// of the scene's size: faces lying flush on each other. Sorted.
 std::vector<std::pair<int, int>> flush_pairs(const Scene& scene);
 
+/// Per patch, 1 when no vertex of another patch lies in front of its plane by more than 1e-9 of
+/// the scene's size (its normal probably points out of the room), else 0. About linear in the
+/// patches: the vertices extreme along 26 directions, then the scene's box, settle most patches.
+std::vector<char> patches_facing_nothing(const Scene& scene);
+
 /// One line per finding, without a "warning:" prefix; empty for a sound scene.
 std::vector<std::string> scene_warnings(const Scene& scene);
 
